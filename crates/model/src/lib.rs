@@ -1,0 +1,26 @@
+//! Shared model of a layered elastic projectile hitting a rigid wall.
+//!
+//! This crate knows nothing about how a rod is simulated. It holds:
+//! - [`Scene`]: what a user writes (layers bottom to top, impact speed), and its
+//!   validation into a [`Rod`] with every derived quantity (wave speeds,
+//!   impedances, transit times, interface positions);
+//! - [`interface`]: reflection/transmission of strain fronts at an interface, as
+//!   pure functions of the two layers;
+//! - [`theory`]: the paper's closed-form results (Sec. VI, Appendix B);
+//! - [`Outcome`]: what every engine returns, with the paper's bounce filter.
+//!
+//! Conventions (see `shared/DESIGN.md` §1): `y` points up from the wall, layer 0
+//! touches the wall, unit cross-section, strain is positive in tension.
+
+pub mod bilayer;
+pub mod contact;
+pub mod interface;
+pub mod outcome;
+pub mod scene;
+pub mod theory;
+
+pub use bilayer::Bilayer;
+pub use contact::ContactHistory;
+pub use interface::InterfaceCoefficients;
+pub use outcome::{EngineKind, Outcome, StopReason, Truncation};
+pub use scene::{Layer, LayerProps, Rod, Scene, SceneError};

@@ -1,0 +1,92 @@
+//! What every engine returns.
+
+use serde::{Deserialize, Serialize};
+
+/// Which engine produced an outcome.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum EngineKind {
+    /// The exact d'Alembert front-tracing engine.
+    Wave,
+    /// The discrete Beeman mass-spring(-dashpot) chain.
+    Chain,
+}
+
+/// Why a run stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StopReason {
+    /// The rod is free and provably never touches the wall again
+    /// (DESIGN.md §2, exact stop rule).
+    Escaped,
+    /// The requested horizon (e.g. the paper's `20 max(t_i)`) was reached while
+    /// the rod was free.
+    Horizon,
+    /// The horizon was reached while the rod still touched the wall: `t_c` is
+    /// then only a lower bound.
+    HorizonInContact,
+}
+
+/// What the exact engine left out to save time, so it is never silent.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct Truncation {
+    /// Fronts whose velocity jump fell under the drop tolerance.
+    pub dropped_fronts: u64,
+    /// Sum of the dropped fronts' velocity jumps `c |d|`, in units of `v_b`.
+    pub dropped_velocity: f64,
+    /// Fronts added into an earlier front of the same lane because they were
+    /// born within the merge window of it.
+    pub merged_fronts: u64,
+}
+
+/// Result of one impact, in the scene's units.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Outcome {
+    pub engine: EngineKind,
+    /// Coefficient of restitution `e`: final centre-of-mass speed over `v_b`,
+    /// from the wall impulse (paper Eq. 6).
+    pub restitution: f64,
+    /// `e` from the mean velocity of the masses at the end (chain only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub restitution_from_velocity: Option<f64>,
+    /// `t_c`: time of the last separation from the wall.
+    pub contact_time: f64,
+    /// `t_c / (2 sum(t_i))`.
+    pub reduced_contact_time: f64,
+    /// `(t_c - 2 t2) / t1` for two-layer rods, else `None`.
+    pub n1: Option<f64>,
+    /// The paper's `N_b`: 1 + flights longer than `min(t_i)`.
+    pub bounces: u32,
+    /// Raw number of separations from the wall.
+    pub separations: u32,
+    /// Every contact interval `[start, end]`.
+    pub contacts: Vec<[f64; 2]>,
+    /// One-way transit time of each layer, bottom first.
+    pub transit_times: Vec<f64>,
+    pub stop_reason: StopReason,
+    /// Time at which the run stopped.
+    pub end_time: f64,
+    /// Boundary events processed (wave engine).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub events: Option<u64>,
+    /// Time steps taken (chain).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub steps: Option<u64>,
+    /// What the exact engine dropped or merged (wave engine).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub truncation: Option<Truncation>,
+    /// Wall-clock time of the run.
+    pub elapsed_seconds: f64,
+}
+
+impl Outcome {
+    /// `e`, `t_c` and derived contact figures from a contact history.
+    pub fn contact_figures(transit_times: &[f64], contact_time: f64) -> (f64, Option<f64>) {
+        let reduced = contact_time / (2.0 * transit_times.iter().sum::<f64>());
+        let n1 = match transit_times {
+            [t1, t2] => Some((contact_time - 2.0 * t2) / t1),
+            _ => None,
+        };
+        (reduced, n1)
+    }
+}

@@ -1,0 +1,41 @@
+//! Optional records: wall history and front paths. Kept only when a caller asks
+//! (see [`crate::Record`]); a plain run allocates none of this.
+
+use crate::lane::Direction;
+use serde::Serialize;
+
+/// The wall state just after a wall event.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct WallSample {
+    pub time: f64,
+    /// Wall strain `eps0` (zero when free).
+    pub strain: f64,
+    /// Bottom height above the wall.
+    pub height: f64,
+    /// Bottom velocity (positive upward).
+    pub velocity: f64,
+}
+
+/// The path of one front, from birth to arrival, and where it came from.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FrontRecord {
+    pub id: u32,
+    pub layer: usize,
+    pub direction: Direction,
+    /// Birth time, at the bottom (up) or top (down) of its layer.
+    pub born: f64,
+    /// Arrival time at the other end of the layer.
+    pub arrives: f64,
+    /// Strain jump (including everything merged into it).
+    pub jump: f64,
+    /// Fronts whose arrival produced this one (empty for the impact front and
+    /// for fronts launched by a reconnection).
+    pub parents: Vec<u32>,
+}
+
+/// Everything recorded during a run.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct Recording {
+    pub wall: Vec<WallSample>,
+    pub fronts: Vec<FrontRecord>,
+}

@@ -1,0 +1,152 @@
+//! Hard cases: extreme contrasts, thin layers, exact ties, grazing contacts.
+//! Each must end with finite, valid numbers or a clear error.
+
+mod common;
+use common::*;
+use impact_model::{Bilayer, theory};
+use impact_wave::{WaveConfig, WaveError, simulate};
+
+#[test]
+fn extreme_contrasts_and_thin_layers_give_valid_numbers() {
+    for &(x, alpha) in &[
+        (1e-3, 1e-4),
+        (1e-3, 0.9999),
+        (0.999, 0.9999),
+        (0.995, 0.005),
+    ] {
+        let o = run(x, alpha);
+        assert_valid(&o);
+    }
+}
+
+#[test]
+fn the_stiffest_bottom_under_the_thickest_top_needs_a_merge_window() {
+    // x = 0.999, alpha = 1e-4: t2/t1 ~ 1e5 and fronts multiply without bound.
+    let rod = rod(0.999, 1e-4);
+    let limited = WaveConfig {
+        max_events: 200_000,
+        ..WaveConfig::default()
+    };
+    let err = simulate(&rod, &limited).unwrap_err();
+    assert!(matches!(err, WaveError::EventLimit { .. }));
+    let msg = err.to_string();
+    assert!(
+        msg.contains("--merge-window") && msg.contains("chain"),
+        "{msg}"
+    );
+    // With a merge window it finishes, and says how much it merged.
+    let merged = WaveConfig {
+        merge_window: 1e-2,
+        ..WaveConfig::default()
+    };
+    let o = simulate(&rod, &merged).unwrap();
+    assert_valid(&o);
+    assert!(o.truncation.unwrap().merged_fronts > 0);
+    // e -> x for alpha -> 0 at large x (Appendix C)
+    assert!((o.restitution - 0.999).abs() < 1e-3, "{o:?}");
+}
+
+#[test]
+fn commensurate_transit_times_are_ties_not_spurious_separations() {
+    // At x = x_n, t2 = n t1 exactly in real numbers but not in floating point:
+    // fronts from both layers reach the wall "together" and must be combined.
+    for alpha in [0.3, 0.6] {
+        for n in 1..=3 {
+            let x = theory::x_n(n, alpha);
+            let b = Bilayer::new(x, alpha).unwrap();
+            let o = run(x, alpha);
+            assert_eq!(o.separations, 1, "x_{n} at {alpha}: {o:?}");
+            assert!((o.restitution - theory::central_restitution(b)).abs() < 1e-12);
+            // continuity across the tie
+            for dx in [-1e-7, 1e-7] {
+                let near = run(x + dx, alpha);
+                assert!((near.restitution - o.restitution).abs() < 1e-5);
+                assert_eq!(near.separations, 1);
+            }
+        }
+    }
+    // In the lower region too (alpha < 0.1, separations at the ties).
+    for n in 1..=4 {
+        assert_valid(&run(theory::x_n(n, 0.05), 0.05));
+    }
+}
+
+#[test]
+fn simultaneity_window_is_what_makes_ties_exact() {
+    // Without combining, arrivals 1 ulp apart at the wall are decided one by
+    // one; the state is the same (the wall rule is associative) but the count
+    // of separations need not be. With the default window it always is.
+    let x = theory::x_n(1, 0.3);
+    let o = run(x, 0.3);
+    let apart = simulate(
+        &rod(x, 0.3),
+        &WaveConfig {
+            simultaneity: 0.0,
+            ..WaveConfig::default()
+        },
+    )
+    .unwrap();
+    assert!((apart.restitution - o.restitution).abs() < 1e-12);
+    assert!(apart.separations >= o.separations);
+}
+
+#[test]
+fn grazing_reconnection_is_continuous() {
+    // Between x = 0.2 (one separation) and x = 0.4 (two) at alpha = 0.05 the
+    // flight's landing becomes possible: at the threshold the bottom returns
+    // to the wall with zero velocity (a grazing reconnection).
+    let alpha = 0.05;
+    let (mut lo, mut hi) = (0.2, 0.4);
+    assert_eq!(run(lo, alpha).separations, 1);
+    assert!(run(hi, alpha).separations > 1);
+    for _ in 0..45 {
+        let mid = 0.5 * (lo + hi);
+        if run(mid, alpha).separations == 1 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let (below, above) = (run(lo, alpha), run(hi, alpha));
+    assert_valid(&below);
+    assert_valid(&above);
+    assert!(
+        (below.restitution - above.restitution).abs() < 1e-6,
+        "{below:?}\n{above:?}"
+    );
+    assert!(hi - lo < 1e-12);
+}
+
+#[test]
+fn grazing_contact_at_alpha_one_tenth() {
+    // 1 + 2 R12 = 0 at alpha = 0.1: after 2 t1 the wall strain is exactly zero.
+    for x in [0.1, 0.3, 0.6] {
+        let o = run(x, 0.1);
+        assert_valid(&o);
+        let b = Bilayer::new(x, 0.1).unwrap();
+        let near = run(x, 0.1 + 1e-9).restitution;
+        assert!((o.restitution - near).abs() < 1e-6);
+        let _ = b;
+    }
+}
+
+#[test]
+fn engine_settings_are_validated() {
+    let bad = WaveConfig {
+        drop_tolerance: -1.0,
+        ..WaveConfig::default()
+    };
+    let err = impact_wave::WaveEngine::new(&rod(0.5, 0.5), bad).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "invalid engine setting: drop_tolerance must be a finite number >= 0 (got -1)"
+    );
+}
+
+#[test]
+fn viscous_layers_are_refused() {
+    let mut scene = Bilayer::new(0.5, 0.5).unwrap().scene();
+    scene.layers[1].relaxation_time = Some(0.1);
+    let err = simulate(&scene.validate().unwrap(), &WaveConfig::default()).unwrap_err();
+    assert!(err.to_string().contains("layers[1] is viscous"));
+}
