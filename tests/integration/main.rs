@@ -1,1 +1,7 @@
+//! End-to-end tests: the `impact` binary as users and scripts call it.
 
+mod cli_errors;
+mod docs;
+mod run;
+mod support;
+mod sweep;

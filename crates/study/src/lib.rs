@@ -1,1 +1,11 @@
+//! Studies over many impacts: `(x, alpha)` grids, parallel sweeps with a
+//! deterministic row order, and their CSV / JSONL output.
+//!
+//! Architecture invariant: nothing here draws progress bars or parses flags;
+//! the binary passes a progress callback and validated settings.
 
+pub mod grid;
+pub mod sweep;
+
+pub use grid::{Axis, Grid, GridError};
+pub use sweep::{Engine, Row, RowFormat, sweep};

@@ -73,29 +73,29 @@ impl WaveEngine {
         FieldTotals { energy, momentum }
     }
 
-    /// Strain and velocity at height `y` of the undeformed rod, now. At a
-    /// front or an interface the value just above `y` is returned.
+    /// Strain and velocity at height `y` of the undeformed rod, now. A front
+    /// sitting exactly at `y` is not counted: the sample is taken on the side
+    /// the front came from, so at a layer's end it is the state after the
+    /// event that just happened there.
     pub fn field_at(&self, y: f64) -> FieldSample {
         let last = self.layers.len() - 1;
         let i = self.layers.iter().position(|l| y < l.top).unwrap_or(last);
         let l = &self.layers[i];
+        // value of a component at distance `s` from its lane's start
         let value_at = |dir: Direction, s: f64| {
             let (_, steps) = self.component(i, dir);
-            steps
-                .iter()
-                .take_while(|(from, _)| *from <= s)
-                .last()
-                .map_or(0.0, |(_, v)| *v)
+            let mut value = steps[0].1;
+            for &(from, v) in &steps[1..] {
+                if from < s {
+                    value = v;
+                } else {
+                    break;
+                }
+            }
+            value
         };
         let a = value_at(Direction::Up, y - l.bottom);
-        // the down lane starts at the top: just above y is just before it
-        let (_, down) = self.component(i, Direction::Down);
-        let s = l.top - y;
-        let b = down
-            .iter()
-            .take_while(|(from, _)| *from < s)
-            .last()
-            .map_or(0.0, |(_, v)| *v);
+        let b = value_at(Direction::Down, l.top - y);
         FieldSample {
             strain: a + b,
             velocity: l.wave_speed * (b - a),

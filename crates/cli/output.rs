@@ -1,0 +1,134 @@
+//! Human-readable summaries and safe file writing.
+
+use impact_model::{Outcome, StopReason};
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// Writes `path` through a temporary sibling renamed into place, so an
+/// interrupted or failed run never leaves a partial file behind.
+pub fn write_atomically(
+    path: &Path,
+    fill: impl FnOnce(&mut std::io::BufWriter<std::fs::File>) -> std::io::Result<()>,
+) -> anyhow::Result<()> {
+    use anyhow::Context;
+    use std::io::Write;
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let tmp = path.with_file_name(format!(".{name}.partial"));
+    let result = (|| {
+        let file = std::fs::File::create(&tmp)?;
+        let mut w = std::io::BufWriter::new(file);
+        fill(&mut w)?;
+        w.flush()?;
+        std::fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result.with_context(|| format!("cannot write {}", path.display()))
+}
+
+fn seconds(s: f64) -> String {
+    if s < 1e-3 {
+        format!("{:.1} µs", s * 1e6)
+    } else if s < 1.0 {
+        format!("{:.2} ms", s * 1e3)
+    } else {
+        format!("{s:.2} s")
+    }
+}
+
+/// A time or length with 7 significant digits, in plain or scientific form.
+fn num(v: f64) -> String {
+    let a = v.abs();
+    if a == 0.0 || (1e-3..1e6).contains(&a) {
+        let digits = (6 - a.log10().floor().max(0.0) as i32).max(0) as usize;
+        format!("{v:.digits$}")
+    } else {
+        format!("{v:.6e}")
+    }
+}
+
+/// The readable summary of one run.
+pub fn summary(title: &str, o: &Outcome) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "{title}");
+    let engine = match o.engine {
+        impact_model::EngineKind::Wave => "wave (exact front tracing)",
+        impact_model::EngineKind::Chain => "chain (Beeman mass-spring)",
+    };
+    let _ = writeln!(s, "  engine               {engine}");
+    let _ = writeln!(s, "  restitution e        {:.12}", o.restitution);
+    if let Some(v) = o.restitution_from_velocity {
+        let _ = writeln!(s, "  e from mean velocity {v:.12}");
+    }
+    let _ = write!(
+        s,
+        "  contact time t_c     {}  (t_c / 2 sum t_i = {:.6}",
+        num(o.contact_time),
+        o.reduced_contact_time
+    );
+    if let Some(n1) = o.n1 {
+        let _ = write!(s, ", n1 = {n1:.6}");
+    }
+    let _ = writeln!(s, ")");
+    let _ = writeln!(
+        s,
+        "  bounces N_b          {}  ({} separation{})",
+        o.bounces,
+        o.separations,
+        if o.separations == 1 { "" } else { "s" }
+    );
+    let contacts: Vec<String> = o
+        .contacts
+        .iter()
+        .take(8)
+        .map(|c| format!("[{}, {}]", num(c[0]), num(c[1])))
+        .collect();
+    let more = if o.contacts.len() > 8 {
+        format!(" ... ({} in all)", o.contacts.len())
+    } else {
+        String::new()
+    };
+    let _ = writeln!(s, "  contacts             {}{more}", contacts.join(" "));
+    let transits: Vec<String> = o
+        .transit_times
+        .iter()
+        .enumerate()
+        .map(|(i, t)| format!("t{} = {}", i + 1, num(*t)))
+        .collect();
+    let _ = writeln!(s, "  transit times        {}", transits.join(", "));
+    let stop = match o.stop_reason {
+        StopReason::Escaped => "free for good (no further contact is possible)",
+        StopReason::Horizon => "horizon reached, rod free",
+        StopReason::HorizonInContact => "horizon reached IN CONTACT: t_c is only a lower bound",
+    };
+    let _ = writeln!(s, "  stopped at t = {}  {stop}", num(o.end_time));
+    if let Some(events) = o.events {
+        let rate = events as f64 / o.elapsed_seconds.max(1e-12);
+        let _ = write!(
+            s,
+            "  work                 {events} events in {} ({:.1} M events/s)",
+            seconds(o.elapsed_seconds),
+            rate / 1e6
+        );
+        if let Some(t) = o.truncation {
+            let _ = write!(
+                s,
+                "; dropped {} fronts (sum of velocity jumps {:.1e} v_b), merged {}",
+                t.dropped_fronts, t.dropped_velocity, t.merged_fronts
+            );
+        }
+        let _ = writeln!(s);
+    }
+    if let Some(steps) = o.steps {
+        let _ = writeln!(
+            s,
+            "  work                 {steps} steps in {}",
+            seconds(o.elapsed_seconds)
+        );
+    }
+    s
+}

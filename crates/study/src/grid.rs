@@ -1,0 +1,152 @@
+//! Axes written `START:STOP:STEP` (or a single value) and the grids they span.
+
+use impact_model::Bilayer;
+use thiserror::Error;
+
+/// A malformed axis or a grid point outside the allowed range.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum GridError {
+    #[error("--{name} must be START:STOP:STEP or a single value, with numbers (got '{text}')")]
+    Syntax { name: &'static str, text: String },
+    #[error("--{name} must have STEP > 0 and START <= STOP (got '{text}')")]
+    Order { name: &'static str, text: String },
+    #[error("--{name} spans {count} values; at most 10^7 are allowed")]
+    TooMany { name: &'static str, count: f64 },
+    #[error("--{name} values must be numbers in (0, 1) (got {value})")]
+    Range { name: &'static str, value: f64 },
+}
+
+/// Evenly spaced values `start, start + step, ..., stop` (inclusive, with the
+/// count rounded so that rounding of `stop` never drops the last value).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Axis {
+    pub start: f64,
+    pub stop: f64,
+    pub step: f64,
+}
+
+impl Axis {
+    /// The paper's axis: 0.005 to 0.995 in steps of 0.005 (199 values).
+    pub const PAPER: Axis = Axis {
+        start: 0.005,
+        stop: 0.995,
+        step: 0.005,
+    };
+
+    /// Parses `START:STOP:STEP` or a single value, for the flag `--name`.
+    pub fn parse(name: &'static str, text: &str) -> Result<Self, GridError> {
+        let syntax = || GridError::Syntax {
+            name,
+            text: text.to_string(),
+        };
+        let nums: Vec<f64> = text
+            .split(':')
+            .map(|p| p.trim().parse::<f64>().map_err(|_| syntax()))
+            .collect::<Result<_, _>>()?;
+        let axis = match nums[..] {
+            [v] => Axis {
+                start: v,
+                stop: v,
+                step: 1.0,
+            },
+            [start, stop, step] => Axis { start, stop, step },
+            _ => return Err(syntax()),
+        };
+        if !(axis.start.is_finite() && axis.stop.is_finite() && axis.step.is_finite()) {
+            return Err(syntax());
+        }
+        if axis.step <= 0.0 || axis.start > axis.stop {
+            return Err(GridError::Order {
+                name,
+                text: text.to_string(),
+            });
+        }
+        let count = axis.count_f64();
+        if count > 1e7 {
+            return Err(GridError::TooMany { name, count });
+        }
+        for v in axis.values() {
+            if !(v > 0.0 && v < 1.0) {
+                return Err(GridError::Range { name, value: v });
+            }
+        }
+        Ok(axis)
+    }
+
+    fn count_f64(&self) -> f64 {
+        ((self.stop - self.start) / self.step + 1e-9).floor() + 1.0
+    }
+
+    /// The values, computed as `start + i step` (no accumulated rounding).
+    pub fn values(&self) -> Vec<f64> {
+        let n = self.count_f64() as usize;
+        (0..n).map(|i| self.start + i as f64 * self.step).collect()
+    }
+}
+
+/// A rectangular grid over composition `x` and stiffness ratio `alpha`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Grid {
+    pub x: Axis,
+    pub alpha: Axis,
+}
+
+impl Grid {
+    /// The paper's 199 x 199 grid (39,601 points).
+    pub fn paper() -> Self {
+        Self {
+            x: Axis::PAPER,
+            alpha: Axis::PAPER,
+        }
+    }
+
+    /// Points in output order: `alpha` outer, `x` inner.
+    pub fn points(&self) -> Vec<Bilayer> {
+        let xs = self.x.values();
+        self.alpha
+            .values()
+            .into_iter()
+            .flat_map(|alpha| xs.iter().map(move |&x| Bilayer { x, alpha }))
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn paper_axis_has_199_values_ending_at_0_995() {
+        let v = Axis::PAPER.values();
+        assert_eq!(v.len(), 199);
+        assert!((v[198] - 0.995).abs() < 1e-12);
+        assert_eq!(Grid::paper().points().len(), 39_601);
+    }
+
+    #[test]
+    fn parsing() {
+        assert_eq!(Axis::parse("x", "0.4").unwrap().values(), vec![0.4]);
+        assert_eq!(Axis::parse("x", "0.1:0.3:0.1").unwrap().values().len(), 3);
+        let e = Axis::parse("alpha", "0:0.5:0.1").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "--alpha values must be numbers in (0, 1) (got 0)"
+        );
+        assert!(matches!(
+            Axis::parse("x", "a:b"),
+            Err(GridError::Syntax { .. })
+        ));
+        assert!(matches!(
+            Axis::parse("x", "0.5:0.1:0.1"),
+            Err(GridError::Order { .. })
+        ));
+        assert!(matches!(
+            Axis::parse("x", "0.1:0.5:-1"),
+            Err(GridError::Order { .. })
+        ));
+        assert!(matches!(
+            Axis::parse("x", "NaN"),
+            Err(GridError::Syntax { .. })
+        ));
+    }
+}

@@ -1,0 +1,146 @@
+use crate::support::*;
+use impact_model::{Bilayer, Scene};
+use impact_wave::{WaveConfig, simulate};
+use serde_json::Value;
+
+fn run_json(args: &[&str]) -> Value {
+    let mut all = args.to_vec();
+    all.push("--json");
+    let out = impact(&all);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    assert_eq!(text.lines().count(), 1, "one JSON object on one line");
+    serde_json::from_str(&text).unwrap()
+}
+
+#[test]
+fn json_has_the_documented_keys_and_the_engine_numbers() {
+    let v = run_json(&["run", "--x", "0.4", "--alpha", "0.05"]);
+    for key in [
+        "engine",
+        "restitution",
+        "contact_time",
+        "reduced_contact_time",
+        "n1",
+        "bounces",
+        "separations",
+        "contacts",
+        "transit_times",
+        "elapsed_seconds",
+        "events",
+    ] {
+        assert!(v.get(key).is_some(), "missing {key}: {v}");
+    }
+    assert_eq!(v["engine"], "wave");
+    let rod = Bilayer::new(0.4, 0.05).unwrap().scene().validate().unwrap();
+    let o = simulate(&rod, &WaveConfig::default()).unwrap();
+    assert_eq!(v["restitution"].as_f64().unwrap(), o.restitution);
+    assert_eq!(v["contact_time"].as_f64().unwrap(), o.contact_time);
+    assert_eq!(v["bounces"].as_u64().unwrap(), u64::from(o.bounces));
+    assert_eq!(v["contacts"].as_array().unwrap().len(), o.contacts.len());
+}
+
+#[test]
+fn figure_3_scene_files_equal_the_canonical_bilayers() {
+    for (name, x, alpha) in [
+        ("fig3a", 0.2, 0.05),
+        ("fig3b", 0.3, 0.3),
+        ("fig3c", 0.4, 0.05),
+        ("fig3d", 0.6, 0.8),
+    ] {
+        let file = format!("data/scenes/{name}.json");
+        let from_file = run_json(&["run", &file]);
+        let canonical = run_json(&["run", "--x", &x.to_string(), "--alpha", &alpha.to_string()]);
+        let e = |v: &Value| v["restitution"].as_f64().unwrap();
+        assert!((e(&from_file) - e(&canonical)).abs() < 1e-12, "{name}");
+        assert_eq!(from_file["bounces"], canonical["bounces"], "{name}");
+    }
+}
+
+#[test]
+fn every_example_scene_runs_and_is_physical() {
+    let dir = repo().join("data/scenes");
+    let mut count = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        let text = std::fs::read_to_string(&path).unwrap();
+        let scene = Scene::from_json(&text).unwrap();
+        if scene.layers.iter().any(|l| l.is_viscous()) {
+            continue;
+        }
+        let v = run_json(&["run", path.to_str().unwrap()]);
+        let e = v["restitution"].as_f64().unwrap();
+        assert!((0.0..=1.0).contains(&e), "{path:?}: {e}");
+        count += 1;
+    }
+    assert!(count >= 5);
+}
+
+#[test]
+fn three_layer_steel_base_leaves_alone() {
+    // The steel base is ~10^4 times stiffer than the core: it bounces off after
+    // one transit carrying only its own momentum, e = (m1 - m2 - m3) / M.
+    let v = run_json(&["run", "data/scenes/three-layers.json"]);
+    let (m1, m2, m3) = (0.01 * 7850.0, 0.015 * 1200.0, 0.005 * 2700.0);
+    let expected = (m1 - m2 - m3) / (m1 + m2 + m3);
+    assert!((v["restitution"].as_f64().unwrap() - expected).abs() < 1e-9);
+    assert_eq!(v["n1"], Value::Null, "n1 is for two-layer rods only");
+}
+
+#[test]
+fn human_summary_names_the_observables() {
+    let out = impact(&["run", "--x", "0.6", "--alpha", "0.8"]);
+    assert!(out.status.success());
+    let text = stdout(&out);
+    for needle in [
+        "restitution e",
+        "contact time t_c",
+        "n1 = 3.5",
+        "bounces N_b",
+        "free for good",
+    ] {
+        assert!(text.contains(needle), "{needle} missing from\n{text}");
+    }
+}
+
+#[test]
+fn wall_trace_is_written_only_when_asked() {
+    let dir = scratch("trace");
+    let path = dir.join("wall.csv");
+    let out = impact(&[
+        "run",
+        "--x",
+        "0.4",
+        "--alpha",
+        "0.05",
+        "--wall-trace",
+        path.to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    let text = std::fs::read_to_string(&path).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("time,strain,height,velocity"));
+    let first: Vec<f64> = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(|c| c.parse().unwrap())
+        .collect();
+    // at impact the wall strain is -v_b / c1
+    assert_eq!(first[0], 0.0);
+    assert!((first[1] + 1.0 / 0.95f64.sqrt()).abs() < 1e-15);
+    assert_eq!(files_in(&dir), vec!["wall.csv"]);
+}
+
+#[test]
+fn paper_horizon_option() {
+    let v = run_json(&["run", "--x", "0.4", "--alpha", "0.05", "--horizon", "20"]);
+    assert_eq!(v["stop_reason"], "horizon");
+    let t: Vec<f64> = v["transit_times"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| t.as_f64().unwrap())
+        .collect();
+    assert!((v["end_time"].as_f64().unwrap() - 20.0 * t[0].max(t[1])).abs() < 1e-12);
+}
