@@ -3,6 +3,8 @@
 
 use crate::input;
 use clap::{Args, Parser, Subcommand, ValueEnum};
+use impact_chain::{ChainConfig, ChainRecord, ChainStop};
+use impact_study::{BilayerViscosity, Engine};
 use impact_wave::{Record, StopRule, WaveConfig};
 use std::path::PathBuf;
 
@@ -29,14 +31,18 @@ pub enum Command {
     Run(RunArgs),
     /// Simulate every point of an (x, alpha) grid, in parallel
     Sweep(SweepArgs),
+    /// Convert a layer restitution e_i to tau c / L and back (paper Sec. VII)
+    Calibrate(CalibrateArgs),
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum EngineChoice {
-    /// The exact engine for elastic scenes
+    /// The exact engine for elastic scenes, the chain when any layer is viscous
     Auto,
     /// The exact front-tracing engine (elastic layers only)
     Wave,
+    /// The paper's discrete Beeman mass-spring(-dashpot) chain
+    Chain,
 }
 
 /// Settings of the exact engine.
@@ -58,16 +64,143 @@ pub struct WaveArgs {
         allow_negative_numbers = true
     )]
     pub merge_window: f64,
-    /// Stop at FACTOR * max(t_i), as the paper does with 20, instead of the exact escape rule
-    #[arg(long, value_name = "FACTOR", allow_negative_numbers = true)]
-    pub horizon: Option<f64>,
     /// Give up after this many events
     #[arg(long, value_name = "N", default_value_t = 10_000_000)]
     pub max_events: u64,
 }
 
+/// Settings of the chain.
+#[derive(Args, Debug, Clone)]
+pub struct ChainArgs {
+    /// Number of masses of the chain (the paper's 10^4); at least one per layer
+    #[arg(long = "n", value_name = "N", default_value_t = 10_000)]
+    pub masses: usize,
+    /// Chain time step as a fraction of the paper's min(2 pi sqrt(m/k))/100
+    #[arg(
+        long,
+        value_name = "FACTOR",
+        default_value_t = 1.0,
+        allow_negative_numbers = true
+    )]
+    pub dt_factor: f64,
+    /// Give the chain up after this many steps
+    #[arg(long, value_name = "N", default_value_t = 2_000_000_000)]
+    pub max_steps: u64,
+}
+
+/// Which engine, and the settings of both.
+#[derive(Args, Debug, Clone)]
+pub struct EngineArgs {
+    /// Which engine to run
+    #[arg(long, value_enum, default_value_t = EngineChoice::Auto)]
+    pub engine: EngineChoice,
+    /// Stop at FACTOR * max(t_i), as the paper does with 20, instead of the exact escape rule
+    #[arg(long, value_name = "FACTOR", allow_negative_numbers = true)]
+    pub horizon: Option<f64>,
+    #[command(flatten)]
+    pub wave: WaveArgs,
+    #[command(flatten)]
+    pub chain: ChainArgs,
+}
+
+impl EngineArgs {
+    fn horizon(&self) -> anyhow::Result<Option<f64>> {
+        match self.horizon {
+            None => Ok(None),
+            Some(f) if f.is_finite() && f > 0.0 => Ok(Some(f)),
+            Some(f) => Err(input(format!(
+                "--horizon must be a finite number > 0 (got {f})"
+            ))),
+        }
+    }
+
+    /// The engine to run for a scene (`viscous`: any layer dissipates), with
+    /// validated settings. `auto` picks the exact engine for elastic scenes
+    /// and the chain otherwise; the exact engine refuses viscous scenes.
+    pub fn engine(
+        &self,
+        viscous: bool,
+        wave_record: Record,
+        chain_record: ChainRecord,
+    ) -> anyhow::Result<Engine> {
+        let horizon = self.horizon()?;
+        match (self.engine, viscous) {
+            (EngineChoice::Wave, true) => Err(input(
+                "--engine wave: the scene has a viscous layer, and the exact engine handles elastic layers only (use --engine chain or auto)",
+            )),
+            (EngineChoice::Wave, false) | (EngineChoice::Auto, false) => {
+                let mut config = self.wave.config(wave_record)?;
+                if let Some(factor) = horizon {
+                    config.stop = StopRule::Horizon { factor };
+                }
+                Ok(Engine::Wave(config))
+            }
+            (EngineChoice::Chain, _) | (EngineChoice::Auto, true) => {
+                let c = &self.chain;
+                if !(c.dt_factor.is_finite() && c.dt_factor > 0.0 && c.dt_factor <= 10.0) {
+                    return Err(input(format!(
+                        "--dt-factor must be a number in (0, 10] (got {})",
+                        c.dt_factor
+                    )));
+                }
+                if c.masses == 0 || c.max_steps == 0 {
+                    return Err(input("--n and --max-steps must be at least 1 (got 0)"));
+                }
+                Ok(Engine::Chain(ChainConfig {
+                    masses: c.masses,
+                    dt_factor: c.dt_factor,
+                    stop: horizon.map_or(ChainStop::Escape, |factor| ChainStop::Horizon { factor }),
+                    max_steps: c.max_steps,
+                    record: chain_record,
+                }))
+            }
+        }
+    }
+}
+
+/// Viscosity of the canonical bilayer's layers.
+#[derive(Args, Debug, Clone)]
+pub struct ViscosityArgs {
+    /// Relaxation time tau = eta/E of the bottom layer P1 (chain only)
+    #[arg(
+        long,
+        value_name = "TAU",
+        allow_negative_numbers = true,
+        conflicts_with = "e1"
+    )]
+    pub tau1: Option<f64>,
+    /// Relaxation time tau = eta/E of the top layer P2 (chain only)
+    #[arg(
+        long,
+        value_name = "TAU",
+        allow_negative_numbers = true,
+        conflicts_with = "e2"
+    )]
+    pub tau2: Option<f64>,
+    /// Restitution e_1 of a whole-length rod made of P1 (the paper's way, Sec. VII)
+    #[arg(long, value_name = "E", allow_negative_numbers = true)]
+    pub e1: Option<f64>,
+    /// Restitution e_2 of a whole-length rod made of P2
+    #[arg(long, value_name = "E", allow_negative_numbers = true)]
+    pub e2: Option<f64>,
+}
+
+impl ViscosityArgs {
+    pub fn given(&self) -> bool {
+        self.tau1.is_some() || self.tau2.is_some() || self.e1.is_some() || self.e2.is_some()
+    }
+
+    /// Checked by the scene's own validation when the bilayer is built.
+    pub fn viscosity(&self) -> BilayerViscosity {
+        BilayerViscosity {
+            tau: [self.tau1, self.tau2],
+            restitution: [self.e1, self.e2],
+        }
+    }
+}
+
 impl WaveArgs {
-    /// Validated engine settings.
+    /// Validated exact-engine settings (stop rule: see `EngineArgs`).
     pub fn config(&self, record: Record) -> anyhow::Result<WaveConfig> {
         let nonneg = |name: &str, v: f64| {
             if v.is_finite() && v >= 0.0 {
@@ -78,20 +211,11 @@ impl WaveArgs {
                 )))
             }
         };
-        let stop = match self.horizon {
-            None => StopRule::Escape,
-            Some(f) if f.is_finite() && f > 0.0 => StopRule::Horizon { factor: f },
-            Some(f) => {
-                return Err(input(format!(
-                    "--horizon must be a finite number > 0 (got {f})"
-                )));
-            }
-        };
         if self.max_events == 0 {
             return Err(input("--max-events must be at least 1 (got 0)"));
         }
         Ok(WaveConfig {
-            stop,
+            stop: StopRule::Escape,
             drop_tolerance: nonneg("drop-tolerance", self.drop_tolerance)?,
             merge_window: nonneg("merge-window", self.merge_window)?,
             max_events: self.max_events,
@@ -112,9 +236,8 @@ pub struct RunArgs {
     /// Stiffness ratio alpha = E2 / (E1 + E2) of the canonical bilayer, in (0, 1)
     #[arg(long, allow_negative_numbers = true, requires = "x")]
     pub alpha: Option<f64>,
-    /// Which engine to run
-    #[arg(long, value_enum, default_value_t = EngineChoice::Auto)]
-    pub engine: EngineChoice,
+    #[command(flatten)]
+    pub viscosity: ViscosityArgs,
     /// Print one JSON object on stdout instead of the summary
     #[arg(long)]
     pub json: bool,
@@ -122,7 +245,7 @@ pub struct RunArgs {
     #[arg(long, value_name = "FILE")]
     pub wall_trace: Option<PathBuf>,
     #[command(flatten)]
-    pub wave: WaveArgs,
+    pub engine: EngineArgs,
 }
 
 #[derive(Args, Debug)]
@@ -143,9 +266,8 @@ pub struct SweepArgs {
         allow_hyphen_values = true
     )]
     pub alpha: String,
-    /// Which engine to run
-    #[arg(long, value_enum, default_value_t = EngineChoice::Auto)]
-    pub engine: EngineChoice,
+    #[command(flatten)]
+    pub viscosity: ViscosityArgs,
     /// Output file: CSV, or JSON lines when it ends in .jsonl
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
@@ -156,5 +278,32 @@ pub struct SweepArgs {
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
     #[command(flatten)]
-    pub wave: WaveArgs,
+    pub engine: EngineArgs,
+}
+
+#[derive(Args, Debug)]
+#[command(group(clap::ArgGroup::new("what").required(true).args(["restitution", "tau_c_over_l", "regenerate"])))]
+pub struct CalibrateArgs {
+    /// Print the tau c / L that gives this layer restitution
+    #[arg(long, value_name = "E", allow_negative_numbers = true)]
+    pub restitution: Option<f64>,
+    /// Print the restitution of a homogeneous rod with this tau c / L
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    pub tau_c_over_l: Option<f64>,
+    /// Recompute the calibration table with the chain (minutes) and write it to --out
+    #[arg(long)]
+    pub regenerate: bool,
+    /// Chain size for --regenerate (each entry uses N and 2N, Richardson-extrapolated)
+    #[arg(long = "n", value_name = "N", default_value_t = 2000)]
+    pub masses: usize,
+    /// Where --regenerate writes the table
+    #[arg(
+        long,
+        value_name = "FILE",
+        default_value = "data/calibration/kelvin-voigt.csv"
+    )]
+    pub out: PathBuf,
+    /// Print JSON instead of text
+    #[arg(long)]
+    pub json: bool,
 }

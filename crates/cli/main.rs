@@ -6,6 +6,7 @@
 //! run that could not finish (the message says why and what to change).
 
 mod args;
+mod calibrate;
 mod output;
 mod run;
 mod sweep;
@@ -60,6 +61,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Run(a) => run::run(a),
         Command::Sweep(a) => sweep::sweep(a),
+        Command::Calibrate(a) => calibrate::calibrate(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

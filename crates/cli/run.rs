@@ -1,10 +1,12 @@
 //! `impact run`: one impact.
 
-use crate::args::{EngineChoice, RunArgs};
+use crate::args::RunArgs;
 use crate::input;
 use crate::output::{summary, write_atomically};
 use anyhow::Context;
+use impact_chain::{ChainEngine, ChainLayout, ChainRecord};
 use impact_model::{Bilayer, Scene};
+use impact_study::Engine;
 use impact_wave::{Record, WaveEngine};
 use std::io::Write;
 
@@ -17,11 +19,16 @@ pub fn read_scene(path: &std::path::Path) -> anyhow::Result<Scene> {
 
 pub fn run(a: RunArgs) -> anyhow::Result<()> {
     let (scene, title) = match (&a.scene, a.x, a.alpha) {
+        (Some(_), _, _) if a.viscosity.given() => {
+            return Err(input(
+                "--tau1/--tau2/--e1/--e2 apply to --x/--alpha only: give viscosity in the scene file",
+            ));
+        }
         (Some(path), _, _) => (read_scene(path)?, format!("Scene {}", path.display())),
         (None, Some(x), Some(alpha)) => {
             let b = Bilayer::new(x, alpha).map_err(|e| input(e.to_string()))?;
             (
-                b.scene(),
+                a.viscosity.viscosity().scene(b),
                 format!(
                     "Canonical bilayer x = {x}, alpha = {alpha} (L = 1, rho = 1, E1 = 1 - alpha, E2 = alpha, v_b = 1)"
                 ),
@@ -34,27 +41,47 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
         }
     };
     let rod = scene.validate().map_err(|e| input(e.to_string()))?;
-    let record = Record {
-        wall: a.wall_trace.is_some(),
+    let trace = a.wall_trace.is_some();
+    let wave_record = Record {
+        wall: trace,
         fronts: false,
     };
-    let config = a.wave.config(record)?;
-    match a.engine {
-        EngineChoice::Auto | EngineChoice::Wave => {
-            if let Some(i) = rod.scene().layers.iter().position(|l| l.is_viscous()) {
-                return Err(input(format!(
-                    "layers[{i}] is viscous: the exact engine handles elastic layers only (the chain engine is not available yet)"
-                )));
-            }
+    let chain_record = ChainRecord {
+        wall_every: trace.then_some(16),
+        raster: None,
+    };
+    let engine = a
+        .engine
+        .engine(rod.is_viscous(), wave_record, chain_record)?;
+    let (outcome, wall): (_, Vec<[f64; 4]>) = match engine {
+        Engine::Wave(config) => {
+            let mut e = WaveEngine::new(&rod, config).map_err(|e| input(e.to_string()))?;
+            let o = e.run().context("the exact engine could not finish")?;
+            let wall = e
+                .recording()
+                .wall
+                .iter()
+                .map(|s| [s.time, s.strain, s.height, s.velocity])
+                .collect();
+            (o, wall)
         }
-    }
-    let mut engine = WaveEngine::new(&rod, config).map_err(|e| input(e.to_string()))?;
-    let outcome = engine.run().context("the exact engine could not finish")?;
+        Engine::Chain(config) => {
+            let layout = ChainLayout::new(&rod, config.masses).map_err(|e| input(e.to_string()))?;
+            for (layer, count) in layout.thin_layers() {
+                eprintln!(
+                    "warning: layer {layer} has {count} masses (< 50, the paper's minimum for ~1% accuracy); raise --n"
+                );
+            }
+            let mut e = ChainEngine::new(&rod, config).map_err(|e| input(e.to_string()))?;
+            let o = e.run().context("the chain could not finish")?;
+            (o, e.recording().wall.clone())
+        }
+    };
     if let Some(path) = &a.wall_trace {
         write_atomically(path, |w| {
             writeln!(w, "time,strain,height,velocity")?;
-            for s in &engine.recording().wall {
-                writeln!(w, "{},{},{},{}", s.time, s.strain, s.height, s.velocity)?;
+            for s in &wall {
+                writeln!(w, "{},{},{},{}", s[0], s[1], s[2], s[3])?;
             }
             Ok(())
         })?;

@@ -1,5 +1,6 @@
 //! End-to-end tests: the `impact` binary as users and scripts call it.
 
+mod chain;
 mod cli_errors;
 mod docs;
 mod run;

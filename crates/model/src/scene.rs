@@ -133,6 +133,15 @@ impl Scene {
             if layer.relaxation_time.is_some() && layer.restitution.is_some() {
                 return Err(SceneError::ConflictingViscosity { index: i });
             }
+            if let Some(e) = layer.restitution {
+                let (lowest, _) = crate::calibration::range();
+                check(f("restitution"), e, "a number in [the calibration's lowest, 1] (see impact calibrate)", |v| v >= lowest)
+                    .map_err(|_| SceneError::OutOfRange {
+                        field: f("restitution"),
+                        allowed: "a number in (0, 1] reachable by the calibration table (impact calibrate --help)",
+                        value: e,
+                    })?;
+            }
             let wave_speed = (modulus / density).sqrt();
             props.push(LayerProps {
                 bottom,
@@ -229,6 +238,23 @@ impl Rod {
             .iter()
             .map(|l| l.transit_time)
             .fold(0.0, f64::max)
+    }
+
+    /// Kelvin-Voigt relaxation time `tau = eta / E` of layer `i`: given
+    /// directly, or from the layer's restitution `e_i` through the
+    /// calibration (`tau c_i / L = f(e_i)`, `L` the whole rod's length).
+    pub fn relaxation_time(&self, i: usize) -> f64 {
+        let layer = &self.scene.layers[i];
+        if let Some(tau) = layer.relaxation_time {
+            return tau;
+        }
+        match layer.restitution {
+            Some(e) if e < 1.0 => {
+                let scaled = crate::calibration::tau_c_over_l(e).unwrap_or(f64::NAN);
+                scaled * self.total_length() / self.layers[i].wave_speed
+            }
+            _ => 0.0,
+        }
     }
 
     /// Kinetic energy before impact, `M v_b^2 / 2`.

@@ -4,7 +4,7 @@
 //! cargo bench -p impact-study --bench sweep
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use impact_study::{Engine, Grid, sweep};
+use impact_study::{BilayerViscosity, Engine, Grid, sweep};
 use impact_wave::WaveConfig;
 
 fn paper_grid(c: &mut Criterion) {
@@ -14,7 +14,15 @@ fn paper_grid(c: &mut Criterion) {
     group.sample_size(10);
     group.throughput(Throughput::Elements(points.len() as u64));
     group.bench_function("paper_grid_wave", |b| {
-        b.iter(|| sweep(&points, &engine, false, &|| {}))
+        b.iter(|| {
+            sweep(
+                &points,
+                &engine,
+                &BilayerViscosity::default(),
+                false,
+                &|| {},
+            )
+        })
     });
     group.finish();
 }

@@ -8,4 +8,4 @@ pub mod grid;
 pub mod sweep;
 
 pub use grid::{Axis, Grid, GridError};
-pub use sweep::{Engine, Row, RowFormat, sweep};
+pub use sweep::{BilayerViscosity, Engine, Row, RowFormat, sweep};

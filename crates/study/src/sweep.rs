@@ -1,6 +1,7 @@
 //! Parallel sweeps over a grid, one row per point in grid order.
 
-use impact_model::{Bilayer, Outcome};
+use impact_chain::ChainConfig;
+use impact_model::{Bilayer, Outcome, Scene};
 use impact_wave::WaveConfig;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -9,15 +10,58 @@ use serde::Serialize;
 #[derive(Debug, Clone)]
 pub enum Engine {
     Wave(WaveConfig),
+    Chain(ChainConfig),
+}
+
+/// Viscosity of the two layers of a canonical bilayer, as a relaxation time
+/// `tau_i` or as the paper's layer restitution `e_i` (at most one per layer).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct BilayerViscosity {
+    pub tau: [Option<f64>; 2],
+    pub restitution: [Option<f64>; 2],
+}
+
+impl BilayerViscosity {
+    /// The canonical scene of `point` with these viscosities.
+    pub fn scene(&self, point: Bilayer) -> Scene {
+        let mut scene = point.scene();
+        for (i, layer) in scene.layers.iter_mut().enumerate() {
+            layer.relaxation_time = self.tau[i];
+            layer.restitution = self.restitution[i];
+        }
+        scene
+    }
+
+    pub fn is_viscous(&self) -> bool {
+        self.tau.iter().flatten().any(|&t| t > 0.0)
+            || self.restitution.iter().flatten().any(|&e| e < 1.0)
+    }
 }
 
 impl Engine {
-    /// Runs one canonical bilayer point.
-    pub fn run(&self, point: Bilayer) -> Result<Outcome, String> {
-        let rod = point.scene().validate().map_err(|e| e.to_string())?;
+    /// Short name, as in the `engine` column.
+    pub fn name(&self) -> &'static str {
         match self {
-            Engine::Wave(config) => impact_wave::simulate(&rod, config).map_err(|e| e.to_string()),
+            Engine::Wave(_) => "wave",
+            Engine::Chain(_) => "chain",
         }
+    }
+
+    /// Runs one impact.
+    pub fn simulate(&self, rod: &impact_model::Rod) -> Result<Outcome, String> {
+        match self {
+            Engine::Wave(config) => impact_wave::simulate(rod, config).map_err(|e| e.to_string()),
+            Engine::Chain(config) => impact_chain::simulate(rod, config).map_err(|e| e.to_string()),
+        }
+    }
+
+    /// Runs one canonical bilayer point.
+    pub fn run(&self, point: Bilayer, viscosity: &BilayerViscosity) -> Result<Outcome, String> {
+        let rod = viscosity
+            .scene(point)
+            .validate()
+            .map_err(|e| e.to_string())?;
+        self.simulate(&rod)
     }
 }
 
@@ -28,6 +72,7 @@ pub struct Row {
     pub alpha: f64,
     pub engine: &'static str,
     pub restitution: Option<f64>,
+    pub restitution_from_velocity: Option<f64>,
     pub contact_time: Option<f64>,
     pub reduced_contact_time: Option<f64>,
     pub n1: Option<f64>,
@@ -36,6 +81,7 @@ pub struct Row {
     pub end_time: Option<f64>,
     pub stop_reason: Option<&'static str>,
     pub events: Option<u64>,
+    pub steps: Option<u64>,
     pub dropped_fronts: Option<u64>,
     pub merged_fronts: Option<u64>,
     /// Wall-clock time: the only column that differs between identical runs.
@@ -56,6 +102,7 @@ impl Row {
             alpha: point.alpha,
             engine,
             restitution: None,
+            restitution_from_velocity: None,
             contact_time: None,
             reduced_contact_time: None,
             n1: None,
@@ -64,6 +111,7 @@ impl Row {
             end_time: None,
             stop_reason: None,
             events: None,
+            steps: None,
             dropped_fronts: None,
             merged_fronts: None,
             elapsed_seconds: None,
@@ -84,6 +132,8 @@ impl Row {
                     impact_model::StopReason::HorizonInContact => "horizon_in_contact",
                 });
                 row.events = o.events;
+                row.steps = o.steps;
+                row.restitution_from_velocity = o.restitution_from_velocity;
                 row.dropped_fronts = o.truncation.map(|t| t.dropped_fronts);
                 row.merged_fronts = o.truncation.map(|t| t.merged_fronts);
                 row.elapsed_seconds = timing.then_some(o.elapsed_seconds);
@@ -96,7 +146,7 @@ impl Row {
     /// CSV header matching [`Row::csv`].
     pub fn csv_header(timing: bool) -> String {
         let mut h = String::from(
-            "x,alpha,engine,restitution,contact_time,reduced_contact_time,n1,bounces,separations,end_time,stop_reason,events,dropped_fronts,merged_fronts",
+            "x,alpha,engine,restitution,restitution_from_velocity,contact_time,reduced_contact_time,n1,bounces,separations,end_time,stop_reason,events,steps,dropped_fronts,merged_fronts",
         );
         if timing {
             h.push_str(",elapsed_seconds");
@@ -116,6 +166,7 @@ impl Row {
             self.alpha.to_string(),
             self.engine.to_string(),
             cell(&self.restitution),
+            cell(&self.restitution_from_velocity),
             cell(&self.contact_time),
             cell(&self.reduced_contact_time),
             cell(&self.n1),
@@ -124,6 +175,7 @@ impl Row {
             cell(&self.end_time),
             cell(&self.stop_reason),
             cell(&self.events),
+            cell(&self.steps),
             cell(&self.dropped_fronts),
             cell(&self.merged_fronts),
         ];
@@ -186,16 +238,14 @@ impl RowFormat {
 pub fn sweep(
     points: &[Bilayer],
     engine: &Engine,
+    viscosity: &BilayerViscosity,
     timing: bool,
     tick: &(dyn Fn() + Sync),
 ) -> Vec<Row> {
-    let name = match engine {
-        Engine::Wave(_) => "wave",
-    };
     points
         .par_iter()
         .map(|&p| {
-            let row = Row::new(p, name, engine.run(p), timing);
+            let row = Row::new(p, engine.name(), engine.run(p, viscosity), timing);
             tick();
             row
         })
@@ -214,6 +264,7 @@ mod tests {
         };
         let points = grid.points();
         let engine = Engine::Wave(WaveConfig::default());
+        let v = BilayerViscosity::default();
         let one = rayon::ThreadPoolBuilder::new()
             .num_threads(1)
             .build()
@@ -222,8 +273,8 @@ mod tests {
             .num_threads(4)
             .build()
             .unwrap();
-        let a = one.install(|| sweep(&points, &engine, false, &|| {}));
-        let b = four.install(|| sweep(&points, &engine, false, &|| {}));
+        let a = one.install(|| sweep(&points, &engine, &v, false, &|| {}));
+        let b = four.install(|| sweep(&points, &engine, &v, false, &|| {}));
         assert_eq!(a, b);
         for (row, p) in a.iter().zip(&points) {
             assert_eq!((row.x, row.alpha), (p.x, p.alpha));
@@ -238,10 +289,13 @@ mod tests {
                 alpha: 0.05,
             },
             "wave",
-            Engine::Wave(WaveConfig::default()).run(Bilayer {
-                x: 0.4,
-                alpha: 0.05,
-            }),
+            Engine::Wave(WaveConfig::default()).run(
+                Bilayer {
+                    x: 0.4,
+                    alpha: 0.05,
+                },
+                &BilayerViscosity::default(),
+            ),
             true,
         );
         assert_eq!(

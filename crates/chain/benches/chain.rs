@@ -1,0 +1,40 @@
+//! Cost of the chain kernels at the paper's N = 10^4, one core. Throughput is
+//! in mass-steps, so 1 / (criterion's elem/s) is the time per mass-step.
+//!
+//! cargo bench -p impact-chain --bench chain
+
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use impact_chain::{ChainConfig, ChainEngine};
+use impact_model::Bilayer;
+
+const MASSES: usize = 10_000;
+const STEPS: u64 = 200;
+
+fn kernels(c: &mut Criterion) {
+    let mut group = c.benchmark_group("chain_kernel_n10000");
+    group.throughput(Throughput::Elements(STEPS * MASSES as u64));
+    for (label, e2) in [("elastic", None), ("viscous_e2_0.72", Some(0.72))] {
+        let mut scene = Bilayer::new(0.4, 0.05).unwrap().scene();
+        scene.layers[1].restitution = e2;
+        let rod = scene.validate().unwrap();
+        let mut engine = ChainEngine::new(
+            &rod,
+            ChainConfig {
+                masses: MASSES,
+                ..ChainConfig::default()
+            },
+        )
+        .unwrap();
+        group.bench_function(label, |b| {
+            b.iter(|| {
+                for _ in 0..STEPS {
+                    engine.step().unwrap();
+                }
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, kernels);
+criterion_main!(benches);

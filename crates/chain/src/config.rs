@@ -1,0 +1,53 @@
+//! Numerical settings of the chain, each with the reason for its default.
+
+/// When to stop.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ChainStop {
+    /// As soon as the chain is free and provably never touches the wall again
+    /// (the discrete form of DESIGN.md §2's bound, with a 5% margin for the
+    /// integrator's energy fluctuation).
+    Escape,
+    /// At `factor * max(t_i)`; the paper uses 20.
+    Horizon { factor: f64 },
+}
+
+impl ChainStop {
+    pub const PAPER: ChainStop = ChainStop::Horizon { factor: 20.0 };
+}
+
+/// What to record besides the observables; nothing by default.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ChainRecord {
+    /// Sample the wall strain every this many steps.
+    pub wall_every: Option<u64>,
+    /// Sample the strain field every this many steps, averaged into this many
+    /// equal-height rows (for space-time pictures): `(every, rows)`.
+    pub raster: Option<(u64, usize)>,
+}
+
+/// Settings of [`crate::ChainEngine`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct ChainConfig {
+    /// Number of masses. Default `10^4`, the paper's.
+    pub masses: usize,
+    /// Time step as a fraction of the paper's `min(2 pi sqrt(m/k_i)) / 100`.
+    /// Default 1: the paper's step (`omega dt = 0.063`, far inside Beeman's
+    /// elastic stability limit; dashpots are implicit, so they impose none).
+    pub dt_factor: f64,
+    pub stop: ChainStop,
+    /// Refuse to take more steps than this.
+    pub max_steps: u64,
+    pub record: ChainRecord,
+}
+
+impl Default for ChainConfig {
+    fn default() -> Self {
+        Self {
+            masses: 10_000,
+            dt_factor: 1.0,
+            stop: ChainStop::Escape,
+            max_steps: 2_000_000_000,
+            record: ChainRecord::default(),
+        }
+    }
+}

@@ -1,0 +1,441 @@
+//! The chain's time loop: Beeman springs, implicit dashpots, unilateral wall.
+
+use crate::config::{ChainConfig, ChainStop};
+use crate::damping::Dashpots;
+use crate::error::ChainError;
+use crate::layout::ChainLayout;
+use impact_model::{ContactHistory, EngineKind, Outcome, Rod, StopReason};
+use serde::Serialize;
+use std::time::Instant;
+
+/// The strain field at one time, averaged into equal-height rows (row 0 at
+/// the wall).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RasterFrame {
+    pub time: f64,
+    pub strain: Vec<f64>,
+}
+
+/// What the chain recorded (only what the config asked for).
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct ChainRecording {
+    /// `(time, wall strain, bottom height, bottom velocity)` samples.
+    pub wall: Vec<[f64; 4]>,
+    pub raster: Vec<RasterFrame>,
+}
+
+/// The discrete chain for one rod.
+#[derive(Debug, Clone)]
+pub struct ChainEngine {
+    layout: ChainLayout,
+    /// Displacement of each mass from its undeformed height.
+    u: Vec<f64>,
+    v: Vec<f64>,
+    /// Spring accelerations now and one step ago (Beeman).
+    a: Vec<f64>,
+    a_prev: Vec<f64>,
+    inv_mass: Vec<f64>,
+    dashpots: Option<Dashpots>,
+    dt: f64,
+    t: f64,
+    steps: u64,
+    history: ContactHistory,
+    /// Wall impulse so far (trapezoid on the spring force, exact for the
+    /// dashpot half-steps).
+    impulse: f64,
+    wall_force: f64,
+    total_mass: f64,
+    impact_speed: f64,
+    transit_times: Vec<f64>,
+    stop: ChainStop,
+    horizon: f64,
+    escape_at: Option<f64>,
+    compliance: f64,
+    max_steps: u64,
+    config: ChainConfig,
+    recording: ChainRecording,
+    stopped: Option<StopReason>,
+}
+
+impl ChainEngine {
+    pub fn new(rod: &Rod, config: ChainConfig) -> Result<Self, ChainError> {
+        if !(config.dt_factor.is_finite() && config.dt_factor > 0.0 && config.dt_factor <= 10.0) {
+            return Err(ChainError::Setting {
+                field: "dt_factor",
+                allowed: "a number in (0, 10]",
+                value: config.dt_factor,
+            });
+        }
+        if let ChainStop::Horizon { factor } = config.stop
+            && !(factor.is_finite() && factor > 0.0)
+        {
+            return Err(ChainError::Setting {
+                field: "horizon",
+                allowed: "a finite number > 0",
+                value: factor,
+            });
+        }
+        let layout = ChainLayout::new(rod, config.masses)?;
+        let n = layout.len();
+        let dt = layout.paper_time_step() * config.dt_factor;
+        let dashpots = layout
+            .is_viscous()
+            .then(|| Dashpots::new(&layout.mass, &layout.viscosity, dt));
+        let horizon = match config.stop {
+            ChainStop::Horizon { factor } => factor * rod.max_transit_time(),
+            ChainStop::Escape => f64::INFINITY,
+        };
+        Ok(Self {
+            inv_mass: layout.mass.iter().map(|m| 1.0 / m).collect(),
+            compliance: layout.compliance_moment(),
+            total_mass: layout.mass.iter().sum(),
+            u: vec![0.0; n],
+            v: vec![-rod.impact_speed(); n],
+            a: vec![0.0; n],
+            a_prev: vec![0.0; n],
+            dashpots,
+            dt,
+            t: 0.0,
+            steps: 0,
+            history: ContactHistory::new(),
+            impulse: 0.0,
+            wall_force: 0.0,
+            impact_speed: rod.impact_speed(),
+            transit_times: rod.transit_times(),
+            stop: config.stop,
+            horizon,
+            escape_at: None,
+            max_steps: config.max_steps,
+            recording: ChainRecording::default(),
+            stopped: None,
+            config,
+            layout,
+        })
+    }
+
+    /// True when the dashpot kernel runs; an elastic scene never does any
+    /// dashpot work.
+    pub fn uses_dashpots(&self) -> bool {
+        self.dashpots.is_some()
+    }
+
+    pub fn layout(&self) -> &ChainLayout {
+        &self.layout
+    }
+
+    pub fn time(&self) -> f64 {
+        self.t
+    }
+
+    pub fn time_step(&self) -> f64 {
+        self.dt
+    }
+
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    pub fn stopped(&self) -> Option<StopReason> {
+        self.stopped
+    }
+
+    pub fn recording(&self) -> &ChainRecording {
+        &self.recording
+    }
+
+    /// Displacements and velocities of the masses.
+    pub fn state(&self) -> (&[f64], &[f64]) {
+        (&self.u, &self.v)
+    }
+
+    pub fn in_contact(&self) -> bool {
+        self.history.in_contact()
+    }
+
+    /// Kinetic energy plus spring energy (wall spring included while
+    /// compressed).
+    pub fn mechanical_energy(&self) -> f64 {
+        let l = &self.layout;
+        let kinetic: f64 = l
+            .mass
+            .iter()
+            .zip(&self.v)
+            .map(|(m, v)| 0.5 * m * v * v)
+            .sum();
+        let wall = 0.5 * l.stiffness[0] * self.u[0].min(0.0).powi(2);
+        let springs: f64 = (1..l.len())
+            .map(|j| 0.5 * l.stiffness[j] * (self.u[j] - self.u[j - 1]).powi(2))
+            .sum();
+        kinetic + wall + springs
+    }
+
+    /// Centre-of-mass velocity from the masses.
+    pub fn mean_velocity(&self) -> f64 {
+        self.layout
+            .mass
+            .iter()
+            .zip(&self.v)
+            .map(|(m, v)| m * v)
+            .sum::<f64>()
+            / self.total_mass
+    }
+
+    fn mean_displacement(&self) -> f64 {
+        self.layout
+            .mass
+            .iter()
+            .zip(&self.u)
+            .map(|(m, u)| m * u)
+            .sum::<f64>()
+            / self.total_mass
+    }
+
+    /// Wall spring force on mass 0 (upward positive) for displacement `u0`.
+    fn spring_wall_force(&self, u0: f64) -> f64 {
+        -self.layout.stiffness[0] * u0.min(0.0)
+    }
+
+    /// One step of `dt`.
+    pub fn step(&mut self) -> Result<(), ChainError> {
+        let dt = self.dt;
+        let mut wall_impulse = 0.0;
+        let u0_old = self.u[0];
+        beeman_positions(&mut self.u, &self.v, &self.a, &self.a_prev, dt);
+        beeman_velocities(
+            &self.u,
+            &mut self.v,
+            &mut self.a,
+            &mut self.a_prev,
+            &self.layout.stiffness,
+            &self.inv_mass,
+            dt,
+        );
+        let force = self.spring_wall_force(self.u[0]);
+        let spring_impulse = 0.5 * dt * (self.wall_force + force);
+        if let Some(d) = &mut self.dashpots {
+            wall_impulse += d.step(
+                &self.layout.mass,
+                &mut self.v,
+                self.u[0] < 0.0,
+                spring_impulse,
+            );
+        }
+        self.impulse += spring_impulse + wall_impulse;
+        self.wall_force = force;
+        self.t += dt;
+        self.steps += 1;
+        self.track_contact(u0_old);
+        self.record();
+        if self.steps.is_multiple_of(1024) && !(self.u[0].is_finite() && self.v[0].is_finite()) {
+            let mass = self.v.iter().position(|v| !v.is_finite()).unwrap_or(0);
+            return Err(ChainError::NonFinite { time: self.t, mass });
+        }
+        Ok(())
+    }
+
+    /// Detects wall-spring crossings of zero, timed by linear interpolation
+    /// within the step.
+    fn track_contact(&mut self, u0_old: f64) {
+        let u0 = self.u[0];
+        let was = self.history.in_contact();
+        let now = u0 < 0.0;
+        if was == now {
+            return;
+        }
+        let frac = if u0_old != u0 {
+            u0_old / (u0_old - u0)
+        } else {
+            1.0
+        };
+        let at = self.t - self.dt + self.dt * frac.clamp(0.0, 1.0);
+        if now {
+            self.history.reconnect(at);
+            self.escape_at = None;
+        } else {
+            self.history.separate(at);
+            self.schedule_escape();
+        }
+    }
+
+    /// The discrete bound: mass 0 sits at most
+    /// `D = sqrt(sum M_j^2/k_j) sqrt(2 E_int) / M` below the centre of mass.
+    fn schedule_escape(&mut self) {
+        if self.stop != ChainStop::Escape {
+            return;
+        }
+        let v = self.mean_velocity();
+        if v <= 0.0 {
+            return;
+        }
+        let internal = (self.mechanical_energy() - 0.5 * self.total_mass * v * v).max(0.0);
+        let margin = 1.05 * self.compliance.sqrt() * (2.0 * internal).sqrt() / self.total_mass;
+        let rise = margin - self.mean_displacement();
+        self.escape_at = Some(self.t + rise.max(0.0) / v);
+    }
+
+    fn record(&mut self) {
+        let rec = self.config.record;
+        if let Some(every) = rec.wall_every
+            && self.steps.is_multiple_of(every.max(1))
+        {
+            let u0 = self.u[0];
+            self.recording.wall.push([
+                self.t,
+                u0.min(0.0) / self.layout.rest_length[0],
+                u0.max(0.0),
+                self.v[0],
+            ]);
+        }
+        if let Some((every, rows)) = rec.raster
+            && self.steps.is_multiple_of(every.max(1))
+        {
+            let frame = self.raster(rows.max(1));
+            self.recording.raster.push(frame);
+        }
+    }
+
+    /// The strain field averaged into `rows` equal-height rows.
+    pub fn raster(&self, rows: usize) -> RasterFrame {
+        let l = &self.layout;
+        let total = l.height.last().copied().unwrap_or(1.0);
+        let mut sum = vec![0.0; rows];
+        let mut weight = vec![0.0; rows];
+        for j in 0..l.len() {
+            // the wall element is strained only while compressed
+            let stretch = if j == 0 {
+                self.u[0].min(0.0)
+            } else {
+                self.u[j] - self.u[j - 1]
+            };
+            let strain = stretch / l.rest_length[j];
+            let centre = l.height[j] - 0.5 * l.rest_length[j];
+            let row = ((centre / total) * rows as f64)
+                .floor()
+                .clamp(0.0, rows as f64 - 1.0) as usize;
+            sum[row] += strain * l.rest_length[j];
+            weight[row] += l.rest_length[j];
+        }
+        RasterFrame {
+            time: self.t,
+            strain: sum
+                .iter()
+                .zip(&weight)
+                .map(|(s, w)| if *w > 0.0 { s / w } else { 0.0 })
+                .collect(),
+        }
+    }
+
+    /// Steps until the stop rule says so.
+    pub fn run(&mut self) -> Result<Outcome, ChainError> {
+        let start = Instant::now();
+        while self.stopped.is_none() {
+            if self.steps >= self.max_steps {
+                return Err(ChainError::StepLimit {
+                    steps: self.steps,
+                    time: self.t,
+                });
+            }
+            self.step()?;
+            if self.t >= self.horizon {
+                self.stopped = Some(if self.history.in_contact() {
+                    StopReason::HorizonInContact
+                } else {
+                    StopReason::Horizon
+                });
+            } else if let Some(at) = self.escape_at
+                && self.t >= at
+                && !self.history.in_contact()
+            {
+                self.stopped = Some(StopReason::Escaped);
+            }
+        }
+        let mut o = self.outcome();
+        o.elapsed_seconds = start.elapsed().as_secs_f64();
+        Ok(o)
+    }
+
+    /// The observables now (`elapsed_seconds` left at 0).
+    pub fn outcome(&self) -> Outcome {
+        let end = self.t;
+        let contact_time = self.history.contact_time(end);
+        let (reduced, n1) = Outcome::contact_figures(&self.transit_times, contact_time);
+        let min_flight = self
+            .transit_times
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min);
+        let v_impulse = -self.impact_speed + self.impulse / self.total_mass;
+        Outcome {
+            engine: EngineKind::Chain,
+            restitution: v_impulse / self.impact_speed,
+            restitution_from_velocity: Some(self.mean_velocity() / self.impact_speed),
+            contact_time,
+            reduced_contact_time: reduced,
+            n1,
+            bounces: self.history.bounces(min_flight),
+            separations: self.history.separations(),
+            contacts: self.history.intervals(end),
+            transit_times: self.transit_times.clone(),
+            stop_reason: self.stopped.unwrap_or(StopReason::HorizonInContact),
+            end_time: end,
+            events: None,
+            steps: Some(self.steps),
+            truncation: None,
+            elapsed_seconds: 0.0,
+        }
+    }
+}
+
+/// Beeman positions: `u += dt v + dt^2 (4 a - a_prev) / 6`.
+fn beeman_positions(u: &mut [f64], v: &[f64], a: &[f64], a_prev: &[f64], dt: f64) {
+    let c = dt * dt / 6.0;
+    for (((u, v), a), ap) in u.iter_mut().zip(v).zip(a).zip(a_prev) {
+        *u += dt * v + c * (4.0 * a - ap);
+    }
+}
+
+/// New spring accelerations from the new positions, then Beeman velocities
+/// `v += dt (2 a_new + 5 a - a_prev) / 6`; the accelerations shift by one.
+/// The wall spring (element 0) pushes only while compressed.
+fn beeman_velocities(
+    u: &[f64],
+    v: &mut [f64],
+    a: &mut [f64],
+    a_prev: &mut [f64],
+    k: &[f64],
+    inv_m: &[f64],
+    dt: f64,
+) {
+    let n = u.len();
+    let c = dt / 6.0;
+    let mut update = |j: usize, acc: f64| {
+        v[j] += c * (2.0 * acc + 5.0 * a[j] - a_prev[j]);
+        a_prev[j] = a[j];
+        a[j] = acc;
+    };
+    if n == 1 {
+        update(0, -k[0] * u[0].min(0.0) * inv_m[0]);
+        return;
+    }
+    update(0, (k[1] * (u[1] - u[0]) - k[0] * u[0].min(0.0)) * inv_m[0]);
+    // interior masses: branch-free, so the loop vectorises
+    let (u_lo, u_mid, u_hi) = (&u[..n - 2], &u[1..n - 1], &u[2..]);
+    let (k_lo, k_hi) = (&k[1..n - 1], &k[2..]);
+    let (v_mid, a_mid, ap_mid, im_mid) = (
+        &mut v[1..n - 1],
+        &mut a[1..n - 1],
+        &mut a_prev[1..n - 1],
+        &inv_m[1..n - 1],
+    );
+    for j in 0..n - 2 {
+        let acc = (k_hi[j] * (u_hi[j] - u_mid[j]) - k_lo[j] * (u_mid[j] - u_lo[j])) * im_mid[j];
+        v_mid[j] += c * (2.0 * acc + 5.0 * a_mid[j] - ap_mid[j]);
+        ap_mid[j] = a_mid[j];
+        a_mid[j] = acc;
+    }
+    let last = n - 1;
+    let acc = -k[last] * (u[last] - u[last - 1]) * inv_m[last];
+    v[last] += c * (2.0 * acc + 5.0 * a[last] - a_prev[last]);
+    a_prev[last] = a[last];
+    a[last] = acc;
+}

@@ -1,0 +1,39 @@
+#![allow(dead_code)]
+use impact_chain::{ChainConfig, simulate};
+use impact_model::{Bilayer, Layer, Outcome, Rod, Scene};
+
+pub fn bilayer(x: f64, alpha: f64) -> Rod {
+    Bilayer::new(x, alpha).unwrap().scene().validate().unwrap()
+}
+
+pub fn homogeneous(tau_c_over_l: f64) -> Rod {
+    let mut layer = Layer::elastic(1.0, 1.0, 1.0);
+    layer.relaxation_time = Some(tau_c_over_l);
+    Scene {
+        impact_speed: 1.0,
+        layers: vec![layer],
+    }
+    .validate()
+    .unwrap()
+}
+
+pub fn chain(rod: &Rod, masses: usize) -> Outcome {
+    simulate(
+        rod,
+        &ChainConfig {
+            masses,
+            ..ChainConfig::default()
+        },
+    )
+    .unwrap()
+}
+
+/// Least-squares slope of ln(y) against ln(x).
+pub fn log_slope(points: &[(f64, f64)]) -> f64 {
+    let n = points.len() as f64;
+    let (lx, ly): (Vec<f64>, Vec<f64>) = points.iter().map(|(x, y)| (x.ln(), y.ln())).unzip();
+    let (mx, my) = (lx.iter().sum::<f64>() / n, ly.iter().sum::<f64>() / n);
+    let cov: f64 = lx.iter().zip(&ly).map(|(x, y)| (x - mx) * (y - my)).sum();
+    let var: f64 = lx.iter().map(|x| (x - mx).powi(2)).sum();
+    cov / var
+}

@@ -1,0 +1,91 @@
+//! `impact calibrate`: the paper's layer restitution `e_i` and `tau c / L`.
+
+use crate::args::CalibrateArgs;
+use crate::input;
+use crate::output::write_atomically;
+use impact_chain::calibrate::{calibration_grid, calibration_point};
+use impact_model::calibration;
+use rayon::prelude::*;
+use std::io::Write;
+
+pub fn calibrate(a: CalibrateArgs) -> anyhow::Result<()> {
+    let (lowest, widest) = calibration::range();
+    if let Some(e) = a.restitution {
+        let t = calibration::tau_c_over_l(e).ok_or_else(|| {
+            input(format!(
+                "--restitution must be a number in [{lowest:.4}, 1] (the calibrated range; got {e})"
+            ))
+        })?;
+        return print(&a, "restitution", e, "tau_c_over_l", t);
+    }
+    if let Some(t) = a.tau_c_over_l {
+        let e = calibration::restitution(t).ok_or_else(|| {
+            input(format!(
+                "--tau-c-over-l must be a number in [0, {widest}] (the calibrated range; got {t})"
+            ))
+        })?;
+        return print(&a, "tau_c_over_l", t, "restitution", e);
+    }
+    if a.masses < 2 {
+        return Err(input(format!("--n must be at least 2 (got {})", a.masses)));
+    }
+    let grid = calibration_grid();
+    eprintln!(
+        "calibrating {} points with chains of {} and {} masses...",
+        grid.len(),
+        a.masses,
+        2 * a.masses
+    );
+    let start = std::time::Instant::now();
+    let points = grid
+        .par_iter()
+        .map(|&t| calibration_point(t, a.masses))
+        .collect::<Result<Vec<_>, _>>()?;
+    write_atomically(&a.out, |w| {
+        writeln!(
+            w,
+            "# Restitution of a homogeneous Kelvin-Voigt rod vs tau c / L (paper Sec. IV, Fig. 2)."
+        )?;
+        writeln!(
+            w,
+            "# Written by `impact calibrate --regenerate --n {}` in {:.0} s.",
+            a.masses,
+            start.elapsed().as_secs_f64()
+        )?;
+        writeln!(
+            w,
+            "# Each entry: the chain at N = {} and {} masses, Richardson-extrapolated (first order in N);",
+            a.masses,
+            2 * a.masses
+        )?;
+        writeln!(
+            w,
+            "# richardson_correction is the size of that correction, an estimate of the error left."
+        )?;
+        writeln!(w, "tau_c_over_l,restitution,richardson_correction")?;
+        for p in &points {
+            let e = if p.tau_c_over_l == 0.0 {
+                1.0
+            } else {
+                p.restitution
+            };
+            writeln!(w, "{},{},{}", p.tau_c_over_l, e, p.correction)?;
+        }
+        Ok(())
+    })?;
+    eprintln!(
+        "wrote {} in {:.1} s; rebuild to use it",
+        a.out.display(),
+        start.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+fn print(a: &CalibrateArgs, from: &str, x: f64, to: &str, y: f64) -> anyhow::Result<()> {
+    if a.json {
+        println!("{{\"{from}\":{x},\"{to}\":{y}}}");
+    } else {
+        println!("{from} = {x}  ->  {to} = {y:.6}");
+    }
+    Ok(())
+}

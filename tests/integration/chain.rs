@@ -1,0 +1,138 @@
+//! The chain through the binary: engine choice, viscosity flags, calibration.
+
+use crate::support::*;
+use serde_json::Value;
+
+fn json(args: &[&str]) -> Value {
+    let out = impact(args);
+    assert!(out.status.success(), "{args:?}: {}", stderr(&out));
+    serde_json::from_str(&stdout(&out)).unwrap()
+}
+
+#[test]
+fn chain_run_reports_steps_and_both_restitutions() {
+    let v = json(&[
+        "run", "--x", "0.4", "--alpha", "0.05", "--engine", "chain", "--n", "400", "--json",
+    ]);
+    assert_eq!(v["engine"], "chain");
+    assert!(v["steps"].as_u64().unwrap() > 0);
+    assert!(v.get("events").is_none());
+    let (e, ev) = (
+        v["restitution"].as_f64().unwrap(),
+        v["restitution_from_velocity"].as_f64().unwrap(),
+    );
+    assert!((e - ev).abs() < 1e-9);
+    // close to the exact engine's 0.70456 (N = 400: |de| ~ 8e-3)
+    assert!((e - 0.704_56).abs() < 0.01, "{e}");
+}
+
+#[test]
+fn auto_picks_the_chain_for_viscous_layers_and_wave_refuses_them() {
+    let v = json(&[
+        "run", "--x", "0.4", "--alpha", "0.05", "--e2", "0.72", "--n", "200", "--json",
+    ]);
+    assert_eq!(v["engine"], "chain");
+    let v = json(&["run", "--x", "0.4", "--alpha", "0.05", "--json"]);
+    assert_eq!(v["engine"], "wave");
+    let out = impact(&[
+        "run", "--x", "0.4", "--alpha", "0.05", "--tau1", "0.1", "--engine", "wave",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("viscous"), "{}", stderr(&out));
+}
+
+#[test]
+fn few_masses_per_layer_warn_and_too_few_fail() {
+    let out = impact(&[
+        "run", "--x", "0.1", "--alpha", "0.3", "--engine", "chain", "--n", "100", "--json",
+    ]);
+    assert!(out.status.success());
+    assert!(
+        stderr(&out).contains("warning: layer 1 has 10 masses"),
+        "{}",
+        stderr(&out)
+    );
+    let out = impact(&[
+        "run", "--x", "0.1", "--alpha", "0.3", "--engine", "chain", "--n", "1",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("--n must be >= 2"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
+fn bad_viscosity_input() {
+    for (args, needle) in [
+        (vec!["--e1", "1.5"], "layers[0].restitution"),
+        (vec!["--e2", "0"], "layers[1].restitution"),
+        (
+            vec!["--tau1", "-1"],
+            "layers[0].relaxation_time must be a finite number >= 0",
+        ),
+        (
+            vec!["--dt-factor", "0"],
+            "--dt-factor must be a number in (0, 10]",
+        ),
+    ] {
+        let mut all = vec![
+            "run", "--x", "0.4", "--alpha", "0.05", "--engine", "chain", "--n", "100",
+        ];
+        all.extend(args);
+        let out = impact(&all);
+        assert_eq!(out.status.code(), Some(2), "{all:?}");
+        assert!(stderr(&out).contains(needle), "{all:?}: {}", stderr(&out));
+        assert_eq!(stderr(&out).trim_end().lines().count(), 1);
+    }
+}
+
+#[test]
+fn calibration_round_trip() {
+    let v = json(&["calibrate", "--restitution", "0.72", "--json"]);
+    let t = v["tau_c_over_l"].as_f64().unwrap();
+    let back = json(&["calibrate", "--tau-c-over-l", &t.to_string(), "--json"]);
+    assert!((back["restitution"].as_f64().unwrap() - 0.72).abs() < 1e-9);
+    let out = impact(&["calibrate", "--restitution", "0.01"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("calibrated range"));
+}
+
+#[test]
+fn the_calibration_gives_the_layer_restitution_it_promises() {
+    // A homogeneous rod of restitution 0.72 given the paper's way must rebound
+    // with e = 0.72 (to the chain's finite-size error at N = 1000, ~1e-3).
+    let dir = scratch("calibrated");
+    let path = dir.join("rod.json");
+    std::fs::write(&path, r#"{"impact_speed": 1, "layers": [{"length": 2, "modulus": 3, "density": 1.5, "restitution": 0.72}]}"#).unwrap();
+    let v = json(&["run", path.to_str().unwrap(), "--n", "1000", "--json"]);
+    assert_eq!(v["engine"], "chain");
+    assert!(
+        (v["restitution"].as_f64().unwrap() - 0.72).abs() < 2e-3,
+        "{v}"
+    );
+}
+
+#[test]
+fn chain_sweep() {
+    let dir = scratch("chainsweep");
+    let path = dir.join("g.csv");
+    let out = impact(&[
+        "sweep",
+        "--x",
+        "0.2:0.4:0.2",
+        "--alpha",
+        "0.05",
+        "--engine",
+        "chain",
+        "--n",
+        "200",
+        "--out",
+        path.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert_eq!(text.lines().count(), 3);
+    assert!(text.lines().nth(1).unwrap().contains(",chain,"));
+}
