@@ -356,33 +356,17 @@ impl ChainEngine {
 
     /// The observables now (`elapsed_seconds` left at 0).
     pub fn outcome(&self) -> Outcome {
-        let end = self.t;
-        let contact_time = self.history.contact_time(end);
-        let (reduced, n1) = Outcome::contact_figures(&self.transit_times, contact_time);
-        let min_flight = self
-            .transit_times
-            .iter()
-            .copied()
-            .fold(f64::INFINITY, f64::min);
-        let v_impulse = -self.impact_speed + self.impulse / self.total_mass;
-        Outcome {
-            engine: EngineKind::Chain,
-            restitution: v_impulse / self.impact_speed,
-            restitution_from_velocity: Some(self.mean_velocity() / self.impact_speed),
-            contact_time,
-            reduced_contact_time: reduced,
-            n1,
-            bounces: self.history.bounces(min_flight),
-            separations: self.history.separations(),
-            contacts: self.history.intervals(end),
-            transit_times: self.transit_times.clone(),
-            stop_reason: self.stopped.unwrap_or(StopReason::HorizonInContact),
-            end_time: end,
-            events: None,
-            steps: Some(self.steps),
-            truncation: None,
-            elapsed_seconds: 0.0,
-        }
+        let mut o = Outcome::from_history(
+            EngineKind::Chain,
+            (-self.impact_speed + self.impulse / self.total_mass) / self.impact_speed,
+            &self.history,
+            &self.transit_times,
+            self.t,
+            self.stopped.unwrap_or(StopReason::HorizonInContact),
+        );
+        o.restitution_from_velocity = Some(self.mean_velocity() / self.impact_speed);
+        o.steps = Some(self.steps);
+        o
     }
 }
 

@@ -80,13 +80,42 @@ pub struct Outcome {
 }
 
 impl Outcome {
-    /// `e`, `t_c` and derived contact figures from a contact history.
-    pub fn contact_figures(transit_times: &[f64], contact_time: f64) -> (f64, Option<f64>) {
-        let reduced = contact_time / (2.0 * transit_times.iter().sum::<f64>());
+    /// An outcome with the contact figures derived from `history` at time
+    /// `end`: `t_c`, its reduced form, `n1` (two-layer rods), the paper's
+    /// filtered `N_b` (flights longer than `min(t_i)`) and the raw count. The
+    /// engine adds its own work counters.
+    pub fn from_history(
+        engine: EngineKind,
+        restitution: f64,
+        history: &crate::ContactHistory,
+        transit_times: &[f64],
+        end_time: f64,
+        stop_reason: StopReason,
+    ) -> Self {
+        let contact_time = history.contact_time(end_time);
+        let reduced_contact_time = contact_time / (2.0 * transit_times.iter().sum::<f64>());
         let n1 = match transit_times {
             [t1, t2] => Some((contact_time - 2.0 * t2) / t1),
             _ => None,
         };
-        (reduced, n1)
+        let min_flight = transit_times.iter().copied().fold(f64::INFINITY, f64::min);
+        Outcome {
+            engine,
+            restitution,
+            restitution_from_velocity: None,
+            contact_time,
+            reduced_contact_time,
+            n1,
+            bounces: history.bounces(min_flight),
+            separations: history.separations(),
+            contacts: history.intervals(end_time),
+            transit_times: transit_times.to_vec(),
+            stop_reason,
+            end_time,
+            events: None,
+            steps: None,
+            truncation: None,
+            elapsed_seconds: 0.0,
+        }
     }
 }

@@ -543,31 +543,16 @@ impl WaveEngine {
 
     /// The observables at the current time (`elapsed_seconds` left at 0).
     pub fn outcome(&self) -> Outcome {
-        let end = self.now;
-        let contact_time = self.history.contact_time(end);
-        let (reduced, n1) = Outcome::contact_figures(&self.transit_times, contact_time);
-        let min_flight = self
-            .transit_times
-            .iter()
-            .copied()
-            .fold(f64::INFINITY, f64::min);
-        Outcome {
-            engine: EngineKind::Wave,
-            restitution: self.centre_of_mass_velocity() / self.impact_speed,
-            restitution_from_velocity: None,
-            contact_time,
-            reduced_contact_time: reduced,
-            n1,
-            bounces: self.history.bounces(min_flight),
-            separations: self.history.separations(),
-            contacts: self.history.intervals(end),
-            transit_times: self.transit_times.clone(),
-            stop_reason: self.stopped.unwrap_or(StopReason::HorizonInContact),
-            end_time: end,
-            events: Some(self.events),
-            steps: None,
-            truncation: Some(self.truncation),
-            elapsed_seconds: 0.0,
-        }
+        let mut o = Outcome::from_history(
+            EngineKind::Wave,
+            self.centre_of_mass_velocity() / self.impact_speed,
+            &self.history,
+            &self.transit_times,
+            self.now,
+            self.stopped.unwrap_or(StopReason::HorizonInContact),
+        );
+        o.events = Some(self.events);
+        o.truncation = Some(self.truncation);
+        o
     }
 }
