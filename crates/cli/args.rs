@@ -33,6 +33,10 @@ pub enum Command {
     Sweep(SweepArgs),
     /// Convert a layer restitution e_i to tau c / L and back (paper Sec. VII)
     Calibrate(CalibrateArgs),
+    /// Validate the engines against each other over a grid and write a report
+    Compare(CompareArgs),
+    /// Join the journals of a sharded sweep or compare into one result
+    Merge(MergeArgs),
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -72,9 +76,6 @@ pub struct WaveArgs {
 /// Settings of the chain.
 #[derive(Args, Debug, Clone)]
 pub struct ChainArgs {
-    /// Number of masses of the chain (the paper's 10^4); at least one per layer
-    #[arg(long = "n", value_name = "N", default_value_t = 10_000)]
-    pub masses: usize,
     /// Chain time step as a fraction of the paper's min(2 pi sqrt(m/k))/100
     #[arg(
         long,
@@ -114,12 +115,31 @@ impl EngineArgs {
         }
     }
 
+    /// The exact engine with validated settings, whatever `--engine` says.
+    pub fn wave_engine(&self, record: Record) -> anyhow::Result<Engine> {
+        let copy = EngineArgs {
+            engine: EngineChoice::Wave,
+            ..self.clone()
+        };
+        copy.engine(false, 2, record, ChainRecord::default())
+    }
+
+    /// The chain of `masses` with validated settings, whatever `--engine` says.
+    pub fn chain_engine(&self, masses: usize, record: ChainRecord) -> anyhow::Result<Engine> {
+        let copy = EngineArgs {
+            engine: EngineChoice::Chain,
+            ..self.clone()
+        };
+        copy.engine(false, masses, Record::default(), record)
+    }
+
     /// The engine to run for a scene (`viscous`: any layer dissipates), with
     /// validated settings. `auto` picks the exact engine for elastic scenes
     /// and the chain otherwise; the exact engine refuses viscous scenes.
     pub fn engine(
         &self,
         viscous: bool,
+        masses: usize,
         wave_record: Record,
         chain_record: ChainRecord,
     ) -> anyhow::Result<Engine> {
@@ -143,11 +163,11 @@ impl EngineArgs {
                         c.dt_factor
                     )));
                 }
-                if c.masses == 0 || c.max_steps == 0 {
+                if masses == 0 || c.max_steps == 0 {
                     return Err(input("--n and --max-steps must be at least 1 (got 0)"));
                 }
                 Ok(Engine::Chain(ChainConfig {
-                    masses: c.masses,
+                    masses,
                     dt_factor: c.dt_factor,
                     stop: horizon.map_or(ChainStop::Escape, |factor| ChainStop::Horizon { factor }),
                     max_steps: c.max_steps,
@@ -244,6 +264,9 @@ pub struct RunArgs {
     /// Also write the wall history (time, strain, height, velocity) to this CSV file
     #[arg(long, value_name = "FILE")]
     pub wall_trace: Option<PathBuf>,
+    /// Number of masses of the chain (the paper's 10^4); at least one per layer
+    #[arg(long = "n", value_name = "N", default_value_t = 10_000)]
+    pub masses: usize,
     #[command(flatten)]
     pub engine: EngineArgs,
 }
@@ -274,11 +297,92 @@ pub struct SweepArgs {
     /// Leave out the elapsed_seconds column, so identical runs give identical files
     #[arg(long)]
     pub no_timing: bool,
+    /// Number of masses of the chain (the paper's 10^4); at least one per layer
+    #[arg(long = "n", value_name = "N", default_value_t = 10_000)]
+    pub masses: usize,
     /// Worker threads (default: all cores)
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
     #[command(flatten)]
+    pub journal: JournalArgs,
+    #[command(flatten)]
     pub engine: EngineArgs,
+}
+
+/// Splitting a long run over machines, and surviving interruptions.
+#[derive(Args, Debug, Clone)]
+pub struct JournalArgs {
+    /// Run only shard I of N (1-based; point k belongs to shard k mod N + 1), journaling as it goes
+    #[arg(long, value_name = "I/N")]
+    pub shard: Option<String>,
+    /// Complete an interrupted run from its journal instead of starting over
+    #[arg(long)]
+    pub resume: bool,
+}
+
+#[derive(Args, Debug)]
+pub struct CompareArgs {
+    /// Composition axis START:STOP:STEP (or one value); the default grid and sizes take ~2 minutes on 2 cores
+    #[arg(
+        long,
+        value_name = "START:STOP:STEP",
+        default_value = "0.05:0.95:0.05",
+        allow_hyphen_values = true
+    )]
+    pub x: String,
+    /// Stiffness-ratio axis START:STOP:STEP (or one value)
+    #[arg(
+        long,
+        value_name = "START:STOP:STEP",
+        default_value = "0.05:0.95:0.05",
+        allow_hyphen_values = true
+    )]
+    pub alpha: String,
+    /// Chain sizes, comma-separated and increasing; several give convergence orders and Richardson extrapolation
+    #[arg(long = "n", value_name = "N[,N...]", default_value = "500,1000,2000")]
+    pub sizes: String,
+    /// Report directory
+    #[arg(long, value_name = "DIR", default_value = "compare-report")]
+    pub out: PathBuf,
+    /// |e_chain - e_exact| above this counts as a disagreement
+    #[arg(
+        long,
+        value_name = "DE",
+        default_value_t = 0.01,
+        allow_negative_numbers = true
+    )]
+    pub tolerance: f64,
+    /// |difference of t_c / (2 sum t_i)| above this is a contact-class change
+    #[arg(
+        long,
+        value_name = "D",
+        default_value_t = 0.02,
+        allow_negative_numbers = true
+    )]
+    pub contact_tolerance: f64,
+    /// Exit with status 1 if any |de| exceeds TOL (for CI)
+    #[arg(long, value_name = "TOL", allow_negative_numbers = true)]
+    pub fail_above: Option<f64>,
+    /// Leave wall-clock times out, so identical runs give identical reports
+    #[arg(long)]
+    pub no_timing: bool,
+    /// Worker threads (default: all cores)
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+    #[command(flatten)]
+    pub journal: JournalArgs,
+    #[command(flatten)]
+    pub engine: EngineArgs,
+}
+
+#[derive(Args, Debug)]
+pub struct MergeArgs {
+    /// Journals written by `--shard` runs of one sweep or compare
+    #[arg(value_name = "JOURNAL", required = true)]
+    pub journals: Vec<PathBuf>,
+    /// Output: the file a sweep would write (.csv or .jsonl), or the report directory of a compare
+    #[arg(long, value_name = "PATH")]
+    pub out: PathBuf,
 }
 
 #[derive(Args, Debug)]

@@ -7,6 +7,9 @@
 
 mod args;
 mod calibrate;
+mod compare;
+mod jobs;
+mod merge;
 mod output;
 mod run;
 mod sweep;
@@ -62,6 +65,8 @@ fn main() -> ExitCode {
         Command::Run(a) => run::run(a),
         Command::Sweep(a) => sweep::sweep(a),
         Command::Calibrate(a) => calibrate::calibrate(a),
+        Command::Compare(a) => compare::compare(a),
+        Command::Merge(a) => merge::merge(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

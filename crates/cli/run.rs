@@ -52,7 +52,7 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
     };
     let engine = a
         .engine
-        .engine(rod.is_viscous(), wave_record, chain_record)?;
+        .engine(rod.is_viscous(), a.masses, wave_record, chain_record)?;
     let (outcome, wall): (_, Vec<[f64; 4]>) = match engine {
         Engine::Wave(config) => {
             let mut e = WaveEngine::new(&rod, config).map_err(|e| input(e.to_string()))?;

@@ -2,12 +2,11 @@
 
 use crate::args::SweepArgs;
 use crate::input;
+use crate::jobs::{open_journal, progress, shard, threads};
 use crate::output::write_atomically;
 use impact_chain::ChainRecord;
-use impact_study::{Axis, Grid, RowFormat};
+use impact_study::{Axis, Grid, JournalHeader, Row, RowFormat, Shard};
 use impact_wave::Record;
-use indicatif::{ProgressBar, ProgressStyle};
-use std::io::IsTerminal;
 use std::time::Instant;
 
 pub fn sweep(a: SweepArgs) -> anyhow::Result<()> {
@@ -23,37 +22,75 @@ pub fn sweep(a: SweepArgs) -> anyhow::Result<()> {
         .map_err(|e| input(e.to_string()))?;
     let engine = a.engine.engine(
         viscosity.is_viscous(),
+        a.masses,
         Record::default(),
         ChainRecord::default(),
     )?;
-    if let Some(n) = a.threads {
-        if n == 0 {
-            return Err(input("--threads must be at least 1 (got 0)"));
-        }
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .build_global()?;
+    let shard = shard(&a.journal)?;
+    let journaled = a.journal.shard.is_some() || a.journal.resume;
+    if journaled && RowFormat::from_path(&a.out) != RowFormat::JsonLines {
+        return Err(input(
+            "--shard and --resume journal into JSON lines: --out must end in .jsonl (join shards with impact merge)",
+        ));
     }
-    let points = grid.points();
-    let bar = if std::io::stderr().is_terminal() {
-        let bar = ProgressBar::new(points.len() as u64);
-        bar.set_style(
-            ProgressStyle::with_template(
-                "{elapsed_precise} [{bar:40}] {pos}/{len} points ({per_sec}, eta {eta})",
-            )
-            .unwrap_or_else(|_| ProgressStyle::default_bar())
-            .progress_chars("=> "),
-        );
-        bar
-    } else {
-        ProgressBar::hidden()
-    };
+    threads(a.threads)?;
+    let timing = !a.no_timing;
+    let points: Vec<(usize, impact_model::Bilayer)> =
+        grid.points().into_iter().enumerate().collect();
     let start = Instant::now();
-    let rows = impact_study::sweep(&points, &engine, &viscosity, !a.no_timing, &|| bar.inc(1));
-    bar.finish_and_clear();
+    let rows = if journaled {
+        let settings = serde_json::json!({
+            "x": a.x, "alpha": a.alpha,
+            "engine": format!("{engine:?}"),
+            "viscosity": format!("{viscosity:?}"),
+            "timing": timing,
+        });
+        let header = JournalHeader::new("sweep", settings, points.len(), shard);
+        let (journal, done) = open_journal::<Row>(&a.out, &header, a.journal.resume)?;
+        let todo: Vec<_> = points
+            .iter()
+            .copied()
+            .filter(|(k, _)| shard.contains(*k) && !done.contains_key(k))
+            .collect();
+        let bar = progress(todo.len(), "points");
+        let failures = std::sync::Mutex::new(Vec::new());
+        let rows = impact_study::sweep(&todo, &engine, &viscosity, timing, &|k, row| {
+            if let Err(e) = journal.append(k, row) {
+                failures.lock().unwrap_or_else(|p| p.into_inner()).push(e);
+            }
+            bar.inc(1);
+        });
+        bar.finish_and_clear();
+        if let Some(e) = failures
+            .into_inner()
+            .unwrap_or_else(|p| p.into_inner())
+            .pop()
+        {
+            return Err(e.into());
+        }
+        eprintln!(
+            "{}: {} points of shard {}/{} ({} resumed){}",
+            a.out.display(),
+            done.len() + rows.len(),
+            shard.index,
+            shard.count,
+            done.len(),
+            if shard == Shard::ALL {
+                ""
+            } else {
+                "; join the shards with `impact merge`"
+            }
+        );
+        rows
+    } else {
+        let bar = progress(points.len(), "points");
+        let rows = impact_study::sweep(&points, &engine, &viscosity, timing, &|_, _| bar.inc(1));
+        bar.finish_and_clear();
+        let format = RowFormat::from_path(&a.out);
+        write_atomically(&a.out, |w| format.write(&rows, timing, w))?;
+        rows
+    };
     let wall = start.elapsed().as_secs_f64();
-    let format = RowFormat::from_path(&a.out);
-    write_atomically(&a.out, |w| format.write(&rows, !a.no_timing, w))?;
     let failed = rows.iter().filter(|r| r.error.is_some()).count();
     let events: u64 = rows.iter().filter_map(|r| r.events).sum();
     let steps: u64 = rows.iter().filter_map(|r| r.steps).sum();
@@ -66,9 +103,8 @@ pub fn sweep(a: SweepArgs) -> anyhow::Result<()> {
         )
     };
     eprintln!(
-        "wrote {} rows to {} in {wall:.2} s ({:.0} points/s, {work}){}",
+        "computed {} rows in {wall:.2} s ({:.0} points/s, {work}){}",
         rows.len(),
-        a.out.display(),
         rows.len() as f64 / wall,
         if failed > 0 {
             format!("; {failed} points failed (see the error column)")
@@ -76,5 +112,8 @@ pub fn sweep(a: SweepArgs) -> anyhow::Result<()> {
             String::new()
         }
     );
+    if !journaled {
+        eprintln!("wrote {}", a.out.display());
+    }
     Ok(())
 }

@@ -2,6 +2,7 @@
 
 mod chain;
 mod cli_errors;
+mod compare;
 mod docs;
 mod run;
 mod support;

@@ -8,7 +8,7 @@ use impact_study::{BilayerViscosity, Engine, Grid, sweep};
 use impact_wave::WaveConfig;
 
 fn paper_grid(c: &mut Criterion) {
-    let points = Grid::paper().points();
+    let points: Vec<_> = Grid::paper().points().into_iter().enumerate().collect();
     let engine = Engine::Wave(WaveConfig::default());
     let mut group = c.benchmark_group("sweep");
     group.sample_size(10);
@@ -20,7 +20,7 @@ fn paper_grid(c: &mut Criterion) {
                 &engine,
                 &BilayerViscosity::default(),
                 false,
-                &|| {},
+                &|_, _| {},
             )
         })
     });

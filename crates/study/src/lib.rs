@@ -5,7 +5,9 @@
 //! the binary passes a progress callback and validated settings.
 
 pub mod grid;
+pub mod journal;
 pub mod sweep;
 
 pub use grid::{Axis, Grid, GridError};
+pub use journal::{Journal, JournalError, JournalHeader, Shard};
 pub use sweep::{BilayerViscosity, Engine, Row, RowFormat, sweep};

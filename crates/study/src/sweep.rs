@@ -4,7 +4,7 @@ use impact_chain::ChainConfig;
 use impact_model::{Bilayer, Outcome, Scene};
 use impact_wave::WaveConfig;
 use rayon::prelude::*;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// The engine a sweep runs, with its validated settings.
 #[derive(Debug, Clone)]
@@ -66,11 +66,11 @@ impl Engine {
 }
 
 /// One point of a sweep: the scalar observables, or why the point failed.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Row {
     pub x: f64,
     pub alpha: f64,
-    pub engine: &'static str,
+    pub engine: String,
     pub restitution: Option<f64>,
     pub restitution_from_velocity: Option<f64>,
     pub contact_time: Option<f64>,
@@ -79,13 +79,13 @@ pub struct Row {
     pub bounces: Option<u32>,
     pub separations: Option<u32>,
     pub end_time: Option<f64>,
-    pub stop_reason: Option<&'static str>,
+    pub stop_reason: Option<String>,
     pub events: Option<u64>,
     pub steps: Option<u64>,
     pub dropped_fronts: Option<u64>,
     pub merged_fronts: Option<u64>,
     /// Wall-clock time: the only column that differs between identical runs.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub elapsed_seconds: Option<f64>,
     pub error: Option<String>,
 }
@@ -100,7 +100,7 @@ impl Row {
         let mut row = Row {
             x: point.x,
             alpha: point.alpha,
-            engine,
+            engine: engine.to_string(),
             restitution: None,
             restitution_from_velocity: None,
             contact_time: None,
@@ -126,11 +126,14 @@ impl Row {
                 row.bounces = Some(o.bounces);
                 row.separations = Some(o.separations);
                 row.end_time = Some(o.end_time);
-                row.stop_reason = Some(match o.stop_reason {
-                    impact_model::StopReason::Escaped => "escaped",
-                    impact_model::StopReason::Horizon => "horizon",
-                    impact_model::StopReason::HorizonInContact => "horizon_in_contact",
-                });
+                row.stop_reason = Some(
+                    match o.stop_reason {
+                        impact_model::StopReason::Escaped => "escaped",
+                        impact_model::StopReason::Horizon => "horizon",
+                        impact_model::StopReason::HorizonInContact => "horizon_in_contact",
+                    }
+                    .to_string(),
+                );
                 row.events = o.events;
                 row.steps = o.steps;
                 row.restitution_from_velocity = o.restitution_from_velocity;
@@ -233,20 +236,22 @@ impl RowFormat {
     }
 }
 
-/// Runs every point in parallel; rows come back in the order of `points`,
-/// whatever the number of threads. `tick` is called once per finished point.
+/// Runs every `(grid index, point)` in parallel; rows come back in the order
+/// given, whatever the number of threads. `on_row` is called with each
+/// finished row (from the worker threads), e.g. to journal it or to tick a
+/// progress bar.
 pub fn sweep(
-    points: &[Bilayer],
+    points: &[(usize, Bilayer)],
     engine: &Engine,
     viscosity: &BilayerViscosity,
     timing: bool,
-    tick: &(dyn Fn() + Sync),
+    on_row: &(dyn Fn(usize, &Row) + Sync),
 ) -> Vec<Row> {
     points
         .par_iter()
-        .map(|&p| {
+        .map(|&(index, p)| {
             let row = Row::new(p, engine.name(), engine.run(p, viscosity), timing);
-            tick();
+            on_row(index, &row);
             row
         })
         .collect()
@@ -262,7 +267,7 @@ mod tests {
             x: crate::Axis::parse("x", "0.1:0.9:0.2").unwrap(),
             alpha: crate::Axis::parse("alpha", "0.05:0.95:0.3").unwrap(),
         };
-        let points = grid.points();
+        let points: Vec<(usize, Bilayer)> = grid.points().into_iter().enumerate().collect();
         let engine = Engine::Wave(WaveConfig::default());
         let v = BilayerViscosity::default();
         let one = rayon::ThreadPoolBuilder::new()
@@ -273,10 +278,10 @@ mod tests {
             .num_threads(4)
             .build()
             .unwrap();
-        let a = one.install(|| sweep(&points, &engine, &v, false, &|| {}));
-        let b = four.install(|| sweep(&points, &engine, &v, false, &|| {}));
+        let a = one.install(|| sweep(&points, &engine, &v, false, &|_, _| {}));
+        let b = four.install(|| sweep(&points, &engine, &v, false, &|_, _| {}));
         assert_eq!(a, b);
-        for (row, p) in a.iter().zip(&points) {
+        for (row, (_, p)) in a.iter().zip(&points) {
             assert_eq!((row.x, row.alpha), (p.x, p.alpha));
         }
     }

@@ -1,0 +1,27 @@
+//! Figures as plain SVG (vector, real text), and PNG renderings of them.
+//!
+//! Nothing here knows about impacts: a heatmap is a grid of numbers, a line
+//! plot is a set of series. PNGs are rendered with `resvg` and the DejaVu Sans
+//! font embedded from `data/fonts`, so they look the same on every machine and
+//! need no system library.
+
+mod axis;
+mod colour;
+mod heatmap;
+mod lines;
+mod raster;
+mod svg;
+
+pub use axis::{Axis, Scale};
+pub use colour::{Colour, Colourmap};
+pub use heatmap::{Category, Heatmap};
+pub use lines::{LinePlot, Marker, Series};
+pub use raster::{PlotError, png};
+pub use svg::{Anchor, Svg, escape};
+
+/// Writes `stem.svg` and `stem.png` for an SVG document.
+pub fn write_svg_and_png(stem: &std::path::Path, svg: &str) -> Result<(), PlotError> {
+    std::fs::write(stem.with_extension("svg"), svg)?;
+    std::fs::write(stem.with_extension("png"), png(svg, 2.0)?)?;
+    Ok(())
+}

@@ -1,0 +1,170 @@
+//! A minimal SVG writer: shapes and text appended to a document.
+
+use std::fmt::Write as _;
+
+/// Escapes text for XML content and attribute values.
+pub fn escape(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&apos;"),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+/// Horizontal text anchor.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Anchor {
+    Start,
+    Middle,
+    End,
+}
+
+impl Anchor {
+    fn as_str(self) -> &'static str {
+        match self {
+            Anchor::Start => "start",
+            Anchor::Middle => "middle",
+            Anchor::End => "end",
+        }
+    }
+}
+
+/// An SVG document being written. Coordinates in pixels, y down.
+#[derive(Debug, Clone)]
+pub struct Svg {
+    pub width: f64,
+    pub height: f64,
+    body: String,
+}
+
+/// Formats a coordinate with two decimals (enough at any output size).
+fn n(v: f64) -> String {
+    let s = format!("{v:.2}");
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
+impl Svg {
+    pub fn new(width: f64, height: f64) -> Self {
+        Self {
+            width,
+            height,
+            body: String::new(),
+        }
+    }
+
+    /// Appends raw SVG markup (already escaped).
+    pub fn raw(&mut self, markup: &str) {
+        self.body.push_str(markup);
+        self.body.push('\n');
+    }
+
+    pub fn rect(&mut self, x: f64, y: f64, w: f64, h: f64, fill: &str, extra: &str) {
+        let _ = writeln!(
+            self.body,
+            r#"<rect x="{}" y="{}" width="{}" height="{}" fill="{fill}" {extra}/>"#,
+            n(x),
+            n(y),
+            n(w),
+            n(h)
+        );
+    }
+
+    pub fn line(
+        &mut self,
+        from: (f64, f64),
+        to: (f64, f64),
+        stroke: &str,
+        width: f64,
+        extra: &str,
+    ) {
+        let _ = writeln!(
+            self.body,
+            r#"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{stroke}" stroke-width="{}" {extra}/>"#,
+            n(from.0),
+            n(from.1),
+            n(to.0),
+            n(to.1),
+            n(width)
+        );
+    }
+
+    /// An open polyline; `extra` may carry e.g. `stroke-dasharray`.
+    pub fn polyline(&mut self, points: &[(f64, f64)], stroke: &str, width: f64, extra: &str) {
+        if points.len() < 2 {
+            return;
+        }
+        let mut d = String::with_capacity(points.len() * 14);
+        for (i, (x, y)) in points.iter().enumerate() {
+            let _ = write!(d, "{}{},{}", if i == 0 { "M" } else { " L" }, n(*x), n(*y));
+        }
+        let _ = writeln!(
+            self.body,
+            r#"<path d="{d}" fill="none" stroke="{stroke}" stroke-width="{}" stroke-linejoin="round" {extra}/>"#,
+            n(width)
+        );
+    }
+
+    pub fn circle(&mut self, x: f64, y: f64, r: f64, fill: &str, extra: &str) {
+        let _ = writeln!(
+            self.body,
+            r#"<circle cx="{}" cy="{}" r="{}" fill="{fill}" {extra}/>"#,
+            n(x),
+            n(y),
+            n(r)
+        );
+    }
+
+    /// Text at `(x, y)` (baseline), escaped here.
+    pub fn text(&mut self, x: f64, y: f64, text: &str, size: f64, anchor: Anchor, extra: &str) {
+        let _ = writeln!(
+            self.body,
+            r#"<text x="{}" y="{}" font-size="{}" text-anchor="{}" {extra}>{}</text>"#,
+            n(x),
+            n(y),
+            n(size),
+            anchor.as_str(),
+            escape(text)
+        );
+    }
+
+    /// Text rotated by -90 degrees around its anchor (for vertical axis labels).
+    pub fn vertical_text(&mut self, x: f64, y: f64, text: &str, size: f64) {
+        let extra = format!(r#"transform="rotate(-90 {} {})""#, n(x), n(y));
+        self.text(x, y, text, size, Anchor::Middle, &extra);
+    }
+
+    /// The complete document.
+    pub fn finish(self) -> String {
+        format!(
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="DejaVu Sans, Arial, sans-serif">
+<rect x="0" y="0" width="{w}" height="{h}" fill="white"/>
+{}</svg>
+"#,
+            self.body,
+            w = n(self.width),
+            h = n(self.height)
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn text_is_escaped_and_numbers_are_short() {
+        let mut s = Svg::new(100.0, 50.0);
+        s.text(1.0, 2.5, "a < b & \"c\"", 10.0, Anchor::Start, "");
+        let doc = s.finish();
+        assert!(doc.contains("a &lt; b &amp; &quot;c&quot;"));
+        assert!(doc.contains(r#"x="1" y="2.5""#));
+        assert!(doc.starts_with("<svg xmlns=\"http://www.w3.org/2000/svg\""));
+    }
+}

@@ -1,0 +1,392 @@
+//! Journals: finished points appended one JSON line at a time, so that a run
+//! can be split into shards, killed at any moment, resumed without redoing
+//! or duplicating a point, and merged into exactly what one run writes.
+//!
+//! The first line is a [`JournalHeader`] (what was run); each further line is
+//! `{"index": k, "row": ...}` for grid point `k`, written with one `write`
+//! call. A line cut short by a kill is detected on resume (no newline, or not
+//! JSON) and its point is done again.
+
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::io::{Read, Seek, Write};
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use thiserror::Error;
+
+/// Problems with a journal, each saying what to do.
+#[derive(Debug, Error)]
+pub enum JournalError {
+    #[error("--shard must be I/N with 1 <= I <= N (got '{0}')")]
+    Shard(String),
+    #[error("{0} exists: add --resume to complete it, or remove it")]
+    Exists(PathBuf),
+    #[error(
+        "{path} was written by a different run ({what} differs): use the same settings, or another file"
+    )]
+    Mismatch { path: PathBuf, what: &'static str },
+    #[error("{path} line {line} is not a journal entry: {reason}")]
+    Corrupt {
+        path: PathBuf,
+        line: usize,
+        reason: String,
+    },
+    #[error(
+        "the journals miss {missing} of {total} points (first missing: index {first}); run or resume the missing shards"
+    )]
+    Incomplete {
+        missing: usize,
+        total: usize,
+        first: usize,
+    },
+    #[error("point {index} appears twice with different results (in {path})")]
+    Conflict { index: usize, path: PathBuf },
+    #[error("no journal given")]
+    Empty,
+    #[error("{path}: {source}")]
+    Io {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+}
+
+fn io(path: &Path) -> impl Fn(std::io::Error) -> JournalError + '_ {
+    move |source| JournalError::Io {
+        path: path.to_path_buf(),
+        source,
+    }
+}
+
+/// Shard `index` of `count` (1-based): grid point `k` belongs to shard
+/// `k mod count + 1`, which spreads costly regions evenly over the shards.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Shard {
+    pub index: u32,
+    pub count: u32,
+}
+
+impl Shard {
+    pub const ALL: Shard = Shard { index: 1, count: 1 };
+
+    pub fn parse(text: &str) -> Result<Self, JournalError> {
+        let bad = || JournalError::Shard(text.to_string());
+        let (i, n) = text.split_once('/').ok_or_else(bad)?;
+        let (index, count): (u32, u32) = (
+            i.trim().parse().map_err(|_| bad())?,
+            n.trim().parse().map_err(|_| bad())?,
+        );
+        if index == 0 || index > count {
+            return Err(bad());
+        }
+        Ok(Shard { index, count })
+    }
+
+    pub fn contains(&self, point: usize) -> bool {
+        point % self.count as usize == (self.index - 1) as usize
+    }
+}
+
+/// What a journal records: everything two runs must share to be resumed or
+/// merged together.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct JournalHeader {
+    /// `"impact-journal/1"`.
+    pub journal: String,
+    /// `"sweep"` or `"compare"`.
+    pub command: String,
+    /// The grid and engine settings, as the command describes them.
+    pub settings: serde_json::Value,
+    /// Points in the whole grid (all shards).
+    pub points: usize,
+    pub shard: Shard,
+}
+
+impl JournalHeader {
+    pub fn new(command: &str, settings: serde_json::Value, points: usize, shard: Shard) -> Self {
+        Self {
+            journal: "impact-journal/1".into(),
+            command: command.into(),
+            settings,
+            points,
+            shard,
+        }
+    }
+}
+
+#[derive(Serialize, Deserialize)]
+struct Entry<T> {
+    index: usize,
+    row: T,
+}
+
+/// An open journal, appended to from many threads.
+pub struct Journal {
+    path: PathBuf,
+    file: Mutex<std::fs::File>,
+}
+
+/// Reads a journal: its header and entries, dropping a torn last line when
+/// `repair` (returning the byte length of the good part).
+fn read_entries<T: DeserializeOwned>(
+    path: &Path,
+) -> Result<(JournalHeader, BTreeMap<usize, T>, u64), JournalError> {
+    let mut text = String::new();
+    std::fs::File::open(path)
+        .and_then(|mut f| f.read_to_string(&mut text))
+        .map_err(io(path))?;
+    // everything after the last newline is a line cut short
+    let good = text.rfind('\n').map_or(0, |i| i + 1);
+    let mut lines = text[..good].lines().enumerate();
+    let corrupt = |line: usize, reason: String| JournalError::Corrupt {
+        path: path.to_path_buf(),
+        line: line + 1,
+        reason,
+    };
+    let (_, first) = lines
+        .next()
+        .ok_or_else(|| corrupt(0, "empty journal".into()))?;
+    let header: JournalHeader =
+        serde_json::from_str(first).map_err(|e| corrupt(0, e.to_string()))?;
+    let mut entries = BTreeMap::new();
+    let all: Vec<(usize, &str)> = lines.collect();
+    let mut good_len = good as u64;
+    for (k, (i, line)) in all.iter().enumerate() {
+        match serde_json::from_str::<Entry<T>>(line) {
+            Ok(e) => {
+                entries.insert(e.index, e.row);
+            }
+            // a complete but garbled last line: also a torn write, redo it
+            Err(_) if k + 1 == all.len() => good_len -= line.len() as u64 + 1,
+            Err(e) => return Err(corrupt(*i, e.to_string())),
+        }
+    }
+    Ok((header, entries, good_len))
+}
+
+impl Journal {
+    /// Opens `path` for `header`. Without `resume` the file must not exist.
+    /// With `resume` an existing journal must have been written by the same
+    /// run; its finished points are returned and a torn last line is cut.
+    pub fn open<T: DeserializeOwned>(
+        path: &Path,
+        header: &JournalHeader,
+        resume: bool,
+    ) -> Result<(Self, BTreeMap<usize, T>), JournalError> {
+        let exists = path.exists();
+        if exists && !resume {
+            return Err(JournalError::Exists(path.to_path_buf()));
+        }
+        if exists {
+            let (found, entries, good_len) = read_entries::<T>(path)?;
+            for (what, same) in [
+                ("command", found.command == header.command),
+                ("settings", found.settings == header.settings),
+                ("grid size", found.points == header.points),
+                ("shard", found.shard == header.shard),
+            ] {
+                if !same {
+                    return Err(JournalError::Mismatch {
+                        path: path.to_path_buf(),
+                        what,
+                    });
+                }
+            }
+            let mut file = std::fs::OpenOptions::new()
+                .read(true)
+                .write(true)
+                .open(path)
+                .map_err(io(path))?;
+            file.set_len(good_len).map_err(io(path))?;
+            file.seek(std::io::SeekFrom::End(0)).map_err(io(path))?;
+            return Ok((
+                Self {
+                    path: path.to_path_buf(),
+                    file: Mutex::new(file),
+                },
+                entries,
+            ));
+        }
+        let mut file = std::fs::OpenOptions::new()
+            .create_new(true)
+            .append(true)
+            .open(path)
+            .map_err(io(path))?;
+        let mut line =
+            serde_json::to_string(header).map_err(|e| io(path)(std::io::Error::other(e)))?;
+        line.push('\n');
+        file.write_all(line.as_bytes()).map_err(io(path))?;
+        Ok((
+            Self {
+                path: path.to_path_buf(),
+                file: Mutex::new(file),
+            },
+            BTreeMap::new(),
+        ))
+    }
+
+    /// Appends one finished point (one `write` of a whole line).
+    pub fn append<T: Serialize>(&self, index: usize, row: &T) -> Result<(), JournalError> {
+        let mut line = serde_json::to_string(&Entry { index, row })
+            .map_err(|e| io(&self.path)(std::io::Error::other(e)))?;
+        line.push('\n');
+        let mut file = self.file.lock().unwrap_or_else(|p| p.into_inner());
+        file.write_all(line.as_bytes()).map_err(io(&self.path))
+    }
+
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+}
+
+/// Joins journals of one run into its full header (shard 1/1) and rows in
+/// grid order, checking that they agree and that no point is missing.
+pub fn merge<T: DeserializeOwned + PartialEq>(
+    paths: &[PathBuf],
+) -> Result<(JournalHeader, Vec<T>), JournalError> {
+    let mut header: Option<JournalHeader> = None;
+    let mut rows: BTreeMap<usize, T> = BTreeMap::new();
+    for path in paths {
+        let (h, entries, _) = read_entries::<T>(path)?;
+        if let Some(first) = &header {
+            for (what, same) in [
+                ("command", first.command == h.command),
+                ("settings", first.settings == h.settings),
+                ("grid size", first.points == h.points),
+            ] {
+                if !same {
+                    return Err(JournalError::Mismatch {
+                        path: path.clone(),
+                        what,
+                    });
+                }
+            }
+        } else {
+            header = Some(h);
+        }
+        for (index, row) in entries {
+            if let Some(old) = rows.get(&index) {
+                if *old != row {
+                    return Err(JournalError::Conflict {
+                        index,
+                        path: path.clone(),
+                    });
+                }
+            } else {
+                rows.insert(index, row);
+            }
+        }
+    }
+    let mut header = header.ok_or(JournalError::Empty)?;
+    let total = header.points;
+    if rows.len() != total || rows.keys().next_back().is_some_and(|&k| k >= total) {
+        let first = (0..total).find(|k| !rows.contains_key(k)).unwrap_or(0);
+        return Err(JournalError::Incomplete {
+            missing: total.saturating_sub(rows.len()),
+            total,
+            first,
+        });
+    }
+    header.shard = Shard::ALL;
+    Ok((header, rows.into_values().collect()))
+}
+
+/// Reads only a journal's header (to tell which command wrote it).
+pub fn header(path: &Path) -> Result<JournalHeader, JournalError> {
+    let file = std::fs::File::open(path).map_err(io(path))?;
+    let mut first = String::new();
+    std::io::BufRead::read_line(&mut std::io::BufReader::new(file), &mut first)
+        .map_err(io(path))?;
+    serde_json::from_str(&first).map_err(|e| JournalError::Corrupt {
+        path: path.to_path_buf(),
+        line: 1,
+        reason: e.to_string(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tmp(name: &str) -> PathBuf {
+        let p = std::env::temp_dir().join(format!("impact-journal-{}-{name}", std::process::id()));
+        let _ = std::fs::remove_file(&p);
+        p
+    }
+
+    fn header(shard: Shard) -> JournalHeader {
+        JournalHeader::new("sweep", serde_json::json!({"x": "0.1:0.5:0.1"}), 5, shard)
+    }
+
+    #[test]
+    fn shards_partition_the_grid() {
+        let shards: Vec<Shard> = (1..=3).map(|i| Shard { index: i, count: 3 }).collect();
+        for k in 0..100 {
+            assert_eq!(shards.iter().filter(|s| s.contains(k)).count(), 1);
+        }
+        assert!(
+            Shard::parse("0/3").is_err()
+                && Shard::parse("4/3").is_err()
+                && Shard::parse("a").is_err()
+        );
+        assert_eq!(
+            Shard::parse(" 2 / 3 ").unwrap(),
+            Shard { index: 2, count: 3 }
+        );
+    }
+
+    #[test]
+    fn a_torn_last_line_is_redone_and_nothing_is_duplicated() {
+        let p = tmp("torn");
+        let h = header(Shard::ALL);
+        let (j, done) = Journal::open::<f64>(&p, &h, false).unwrap();
+        assert!(done.is_empty());
+        for k in 0..3 {
+            j.append(k, &(k as f64 * 1.5)).unwrap();
+        }
+        drop(j);
+        // a kill in the middle of the fourth write
+        std::fs::OpenOptions::new()
+            .append(true)
+            .open(&p)
+            .unwrap()
+            .write_all(br#"{"index":3,"ro"#)
+            .unwrap();
+        assert!(matches!(
+            Journal::open::<f64>(&p, &h, false),
+            Err(JournalError::Exists(_))
+        ));
+        let (j, done) = Journal::open::<f64>(&p, &h, true).unwrap();
+        assert_eq!(done.keys().copied().collect::<Vec<_>>(), vec![0, 1, 2]);
+        j.append(3, &4.5).unwrap();
+        j.append(4, &6.0).unwrap();
+        drop(j);
+        let (merged_header, rows) = merge::<f64>(std::slice::from_ref(&p)).unwrap();
+        assert_eq!(rows, vec![0.0, 1.5, 3.0, 4.5, 6.0]);
+        assert_eq!(merged_header.shard, Shard::ALL);
+    }
+
+    #[test]
+    fn resume_refuses_another_run_and_merge_finds_gaps() {
+        let p = tmp("mismatch");
+        let (j, _) = Journal::open::<f64>(&p, &header(Shard::ALL), false).unwrap();
+        j.append(0, &1.0).unwrap();
+        drop(j);
+        let other = JournalHeader::new("sweep", serde_json::json!({"x": "0.2"}), 5, Shard::ALL);
+        assert!(matches!(
+            Journal::open::<f64>(&p, &other, true),
+            Err(JournalError::Mismatch {
+                what: "settings",
+                ..
+            })
+        ));
+        assert!(matches!(
+            merge::<f64>(&[p]),
+            Err(JournalError::Incomplete {
+                missing: 4,
+                first: 1,
+                ..
+            })
+        ));
+    }
+}
