@@ -37,6 +37,8 @@ pub enum Command {
     Compare(CompareArgs),
     /// Join the journals of a sharded sweep or compare into one result
     Merge(MergeArgs),
+    /// Draw the space-time (wave-path) diagram of one impact
+    Diagram(DiagramArgs),
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -410,4 +412,50 @@ pub struct CalibrateArgs {
     /// Print JSON instead of text
     #[arg(long)]
     pub json: bool,
+}
+
+#[derive(Args, Debug)]
+pub struct DiagramArgs {
+    /// Scene file (JSON)
+    #[arg(value_name = "SCENE", conflicts_with_all = ["x", "alpha"])]
+    pub scene: Option<PathBuf>,
+    /// Composition x = L2 / L of the canonical bilayer, in (0, 1)
+    #[arg(long, allow_negative_numbers = true, requires = "alpha")]
+    pub x: Option<f64>,
+    /// Stiffness ratio alpha = E2 / (E1 + E2) of the canonical bilayer, in (0, 1)
+    #[arg(long, allow_negative_numbers = true, requires = "x")]
+    pub alpha: Option<f64>,
+    /// Output figure: .svg (vector, real text), .png, or .html (self-contained page with the event table)
+    #[arg(long, value_name = "FILE")]
+    pub out: PathBuf,
+    /// Also write the self-contained HTML page (diagram with tooltips and event table) beside --out
+    #[arg(long)]
+    pub html: bool,
+    /// Which picture: the exact fronts (wave) or the chain's strain field
+    #[arg(long, value_enum, default_value_t = DiagramEngine::Wave)]
+    pub engine: DiagramEngine,
+    /// Both pictures side by side, sharing axes and colour scale
+    #[arg(long)]
+    pub side_by_side: bool,
+    /// Number of masses of the chain picture
+    #[arg(long = "n", value_name = "N", default_value_t = 2000)]
+    pub masses: usize,
+    /// Time window start
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    pub t_start: Option<f64>,
+    /// Time window end (default: a little after the final takeoff)
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    pub t_end: Option<f64>,
+    /// Colour scale: strains of this magnitude are fully red or blue (default: the largest shown)
+    #[arg(long, value_name = "STRAIN", allow_negative_numbers = true)]
+    pub strain_scale: Option<f64>,
+    /// Do not draw the front lines
+    #[arg(long)]
+    pub no_fronts: bool,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DiagramEngine {
+    Wave,
+    Chain,
 }

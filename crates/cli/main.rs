@@ -8,6 +8,7 @@
 mod args;
 mod calibrate;
 mod compare;
+mod diagram;
 mod jobs;
 mod merge;
 mod output;
@@ -67,6 +68,7 @@ fn main() -> ExitCode {
         Command::Calibrate(a) => calibrate::calibrate(a),
         Command::Compare(a) => compare::compare(a),
         Command::Merge(a) => merge::merge(a),
+        Command::Diagram(a) => diagram::diagram(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

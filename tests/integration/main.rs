@@ -3,6 +3,7 @@
 mod chain;
 mod cli_errors;
 mod compare;
+mod diagram;
 mod docs;
 mod run;
 mod support;

@@ -16,7 +16,7 @@ pub use axis::{Axis, Scale};
 pub use colour::{Colour, Colourmap};
 pub use heatmap::{Category, Heatmap};
 pub use lines::{LinePlot, Marker, Series};
-pub use raster::{PlotError, png};
+pub use raster::{PlotError, embedded_image, png, raster_png};
 pub use svg::{Anchor, Svg, escape};
 
 /// Writes `stem.svg` and `stem.png` for an SVG document.

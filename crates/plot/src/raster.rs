@@ -52,6 +52,28 @@ pub fn png(svg: &str, scale: f32) -> Result<Vec<u8>, PlotError> {
         .map_err(|e| PlotError::Png(e.to_string()))
 }
 
+/// A PNG of `width x height` pixels (row-major, top row first).
+pub fn raster_png(width: u32, height: u32, pixels: &[crate::Colour]) -> Result<Vec<u8>, PlotError> {
+    let mut pixmap = tiny_skia::Pixmap::new(width.max(1), height.max(1))
+        .ok_or(PlotError::Size(width, height))?;
+    for (dst, c) in pixmap.pixels_mut().iter_mut().zip(pixels) {
+        *dst = tiny_skia::PremultipliedColorU8::from_rgba(c.0, c.1, c.2, 255).unwrap_or(*dst);
+    }
+    pixmap
+        .encode_png()
+        .map_err(|e| PlotError::Png(e.to_string()))
+}
+
+/// An SVG `<image>` element embedding `png` as a data URI, placed at
+/// `(x, y)` with size `w x h` and drawn with crisp (nearest) pixels.
+pub fn embedded_image(png: &[u8], x: f64, y: f64, w: f64, h: f64) -> String {
+    use base64::Engine as _;
+    format!(
+        r#"<image x="{x:.2}" y="{y:.2}" width="{w:.2}" height="{h:.2}" preserveAspectRatio="none" style="image-rendering:pixelated" href="data:image/png;base64,{}"/>"#,
+        base64::engine::general_purpose::STANDARD.encode(png)
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,0 +1,124 @@
+//! `impact diagram`: the space-time picture of one impact.
+
+use crate::args::{DiagramArgs, DiagramEngine};
+use crate::input;
+use crate::output::write_atomically;
+use crate::run::read_scene;
+use anyhow::Context;
+use impact_diagram::{Diagram, DiagramOptions, chain_run, exact_run, page};
+use impact_model::Bilayer;
+use std::io::Write;
+
+/// Checks the window and scale flags.
+fn check_flags(a: &DiagramArgs) -> anyhow::Result<()> {
+    for (flag, v) in [
+        ("t-start", a.t_start),
+        ("t-end", a.t_end),
+        ("strain-scale", a.strain_scale),
+    ] {
+        let Some(v) = v else { continue };
+        let ok = v.is_finite() && if flag == "t-start" { v >= 0.0 } else { v > 0.0 };
+        if !ok {
+            let range = if flag == "t-start" { ">= 0" } else { "> 0" };
+            return Err(input(format!(
+                "--{flag} must be a finite number {range} (got {v})"
+            )));
+        }
+    }
+    if let (Some(s), Some(e)) = (a.t_start, a.t_end)
+        && s >= e
+    {
+        return Err(input(format!(
+            "--t-start must be before --t-end (got {s} and {e})"
+        )));
+    }
+    Ok(())
+}
+
+pub fn diagram(a: DiagramArgs) -> anyhow::Result<()> {
+    let (scene, name) = match (&a.scene, a.x, a.alpha) {
+        (Some(path), _, _) => (read_scene(path)?, path.display().to_string()),
+        (None, Some(x), Some(alpha)) => {
+            let b = Bilayer::new(x, alpha).map_err(|e| input(e.to_string()))?;
+            (b.scene(), format!("x = {x}, alpha = {alpha}"))
+        }
+        _ => {
+            return Err(input(
+                "give a scene file or both --x and --alpha (see --help)",
+            ));
+        }
+    };
+    let rod = scene.validate().map_err(|e| input(e.to_string()))?;
+    let ext = a.out.extension().and_then(|e| e.to_str()).unwrap_or("");
+    if !matches!(ext, "svg" | "png" | "html") {
+        return Err(input(format!(
+            "--out must end in .svg, .png or .html (got '{}')",
+            a.out.display()
+        )));
+    }
+    check_flags(&a)?;
+    if rod.is_viscous() && (a.engine == DiagramEngine::Wave || a.side_by_side) {
+        return Err(input(
+            "the scene has a viscous layer: only --engine chain can draw it",
+        ));
+    }
+    let chain_label = format!("chain, N = {}", a.masses);
+    let (mut pictures, outcome, wall) = if a.engine == DiagramEngine::Wave || a.side_by_side {
+        let run = exact_run(&rod).context("the exact engine could not finish")?;
+        (
+            vec![("exact (front tracing)".to_string(), run.picture)],
+            run.outcome,
+            run.wall,
+        )
+    } else {
+        let until = a
+            .t_end
+            .unwrap_or(3.0 * rod.transit_times().iter().sum::<f64>());
+        let run = chain_run(&rod, a.masses, until).map_err(|e| input(e.to_string()))?;
+        (
+            vec![(chain_label.clone(), run.picture)],
+            run.outcome,
+            run.wall,
+        )
+    };
+    if a.side_by_side {
+        let until = a.t_end.unwrap_or(1.2 * outcome.end_time);
+        let chain = chain_run(&rod, a.masses, until).map_err(|e| input(e.to_string()))?;
+        pictures.push((chain_label, chain.picture));
+    }
+    let d = Diagram {
+        title: format!(
+            "{name}: e = {:.4}, t_c = {:.4}, N_b = {}",
+            outcome.restitution, outcome.contact_time, outcome.bounces
+        ),
+        rod,
+        outcome,
+        wall,
+        pictures,
+    };
+    let window = match (a.t_start, a.t_end) {
+        (None, None) => None,
+        (s, e) => Some((s.unwrap_or(0.0), e.unwrap_or(1.12 * d.outcome.contact_time))),
+    };
+    let options = DiagramOptions {
+        window,
+        strain_scale: a.strain_scale,
+        draw_fronts: !a.no_fronts,
+        ..DiagramOptions::default()
+    };
+    match ext {
+        "html" => write_atomically(&a.out, |w| w.write_all(page(&d, &options).as_bytes()))?,
+        "png" => {
+            let png = impact_plot::png(&d.to_svg(&options), 2.0)?;
+            write_atomically(&a.out, |w| w.write_all(&png))?;
+        }
+        _ => write_atomically(&a.out, |w| w.write_all(d.to_svg(&options).as_bytes()))?,
+    }
+    if a.html && ext != "html" {
+        write_atomically(&a.out.with_extension("html"), |w| {
+            w.write_all(page(&d, &options).as_bytes())
+        })?;
+    }
+    eprintln!("wrote {}", a.out.display());
+    Ok(())
+}

@@ -1,0 +1,78 @@
+//! Runs made for drawing: the engines asked to record what a picture needs
+//! (fronts and parents, wall history, strain raster), and nothing more.
+
+use crate::field::ExactField;
+use crate::figure::{ChainPicture, Picture};
+use crate::takeoff::takeoff_path;
+use impact_chain::{ChainConfig, ChainEngine, ChainError, ChainRecord};
+use impact_model::{Outcome, Rod};
+use impact_wave::{Record, WaveConfig, WaveEngine, WaveError};
+
+/// A picture with the run it came from.
+#[derive(Debug, Clone)]
+pub struct Run {
+    pub picture: Picture,
+    pub outcome: Outcome,
+    /// `(time, wall strain)` after each wall event or sample.
+    pub wall: Vec<(f64, f64)>,
+}
+
+/// The exact engine with fronts and parents recorded.
+pub fn exact_run(rod: &Rod) -> Result<Run, WaveError> {
+    let config = WaveConfig {
+        record: Record {
+            wall: true,
+            fronts: true,
+        },
+        ..WaveConfig::default()
+    };
+    let mut e = WaveEngine::new(rod, config)?;
+    let outcome = e.run()?;
+    let rec = e.recording();
+    let wall = rec.wall.iter().map(|s| (s.time, s.strain)).collect();
+    let picture = match ExactField::new(rod, rec) {
+        Ok(field) => Picture::Exact {
+            path: takeoff_path(rod, &rec.fronts, outcome.contact_time),
+            field,
+            fronts: rec.fronts.clone(),
+        },
+        // a run with no front at all cannot happen (the impact launches one)
+        Err(_) => Picture::Chain(ChainPicture { frames: Vec::new() }),
+    };
+    Ok(Run {
+        picture,
+        outcome,
+        wall,
+    })
+}
+
+/// The chain of `masses`, with ~1500 raster frames of up to 200 rows over
+/// `[0, until]`.
+pub fn chain_run(rod: &Rod, masses: usize, until: f64) -> Result<Run, ChainError> {
+    let probe = ChainEngine::new(
+        rod,
+        ChainConfig {
+            masses,
+            ..ChainConfig::default()
+        },
+    )?;
+    let every = ((until / probe.time_step()) / 1500.0).ceil().max(1.0) as u64;
+    let config = ChainConfig {
+        masses,
+        record: ChainRecord {
+            wall_every: Some(every),
+            raster: Some((every, 200.min(masses))),
+        },
+        ..ChainConfig::default()
+    };
+    let mut e = ChainEngine::new(rod, config)?;
+    let outcome = e.run()?;
+    let wall = e.recording().wall.iter().map(|s| (s[0], s[1])).collect();
+    Ok(Run {
+        picture: Picture::Chain(ChainPicture {
+            frames: e.recording().raster.clone(),
+        }),
+        outcome,
+        wall,
+    })
+}
