@@ -39,6 +39,8 @@ pub enum Command {
     Merge(MergeArgs),
     /// Draw the space-time (wave-path) diagram of one impact
     Diagram(DiagramArgs),
+    /// Regenerate every figure of the paper beside what the paper states
+    Reproduce(ReproduceArgs),
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -458,4 +460,21 @@ pub struct DiagramArgs {
 pub enum DiagramEngine {
     Wave,
     Chain,
+}
+
+#[derive(Args, Debug)]
+#[command(group(clap::ArgGroup::new("mode").args(["quick", "full"])))]
+pub struct ReproduceArgs {
+    /// Report directory
+    #[arg(long, value_name = "DIR", default_value = "paper-report")]
+    pub out: PathBuf,
+    /// A few minutes on 2 cores: chains of 400 masses, coarser scans (the default)
+    #[arg(long)]
+    pub quick: bool,
+    /// The paper's resolution (chains of 10^4 masses): hours on 2 cores
+    #[arg(long)]
+    pub full: bool,
+    /// Worker threads (default: all cores)
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
 }

@@ -12,6 +12,7 @@ mod diagram;
 mod jobs;
 mod merge;
 mod output;
+mod reproduce;
 mod run;
 mod sweep;
 
@@ -69,6 +70,7 @@ fn main() -> ExitCode {
         Command::Compare(a) => compare::compare(a),
         Command::Merge(a) => merge::merge(a),
         Command::Diagram(a) => diagram::diagram(a),
+        Command::Reproduce(a) => reproduce::reproduce(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -17,6 +17,7 @@ pub mod calibration;
 pub mod contact;
 pub mod interface;
 pub mod outcome;
+pub mod rigid_bottom;
 pub mod scene;
 pub mod theory;
 

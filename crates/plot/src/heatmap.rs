@@ -79,7 +79,22 @@ impl Heatmap {
             SIZE / self.rows.len().max(1) as f64,
         );
         svg.raw(r#"<g shape-rendering="crispEdges">"#);
-        for (r, &yc) in self.rows.iter().enumerate() {
+        let dense = nc * self.rows.len() > 10_000;
+        if dense {
+            // one pixel per cell, embedded: keeps dense maps small
+            let nr = self.rows.len();
+            let mut pixels = Vec::with_capacity(nc * nr);
+            for r in (0..nr).rev() {
+                for c in 0..nc {
+                    let v = self.values.get(r * nc + c).copied().unwrap_or(f64::NAN);
+                    pixels.push(self.cell_colour(v));
+                }
+            }
+            if let Ok(png) = crate::raster::raster_png(nc as u32, nr as u32, &pixels) {
+                svg.raw(&crate::raster::embedded_image(&png, LEFT, TOP, SIZE, SIZE));
+            }
+        }
+        for (r, &yc) in self.rows.iter().enumerate().filter(|_| !dense) {
             // merge runs of equal colour along a row: far smaller files
             let mut c = 0;
             while c < nc {
@@ -237,5 +252,32 @@ mod tests {
             .unwrap();
         assert_eq!(cells.matches("<rect").count(), 4);
         assert!(svg.contains(">alpha</text>") && svg.contains(">de</text>"));
+    }
+}
+
+#[cfg(test)]
+mod dense_tests {
+    use super::*;
+
+    #[test]
+    fn dense_maps_are_embedded_rasters() {
+        let n = 120;
+        let axis: Vec<f64> = (0..n).map(|i| f64::from(i) / f64::from(n)).collect();
+        let map = Heatmap {
+            title: "dense".into(),
+            x_label: "x".into(),
+            y_label: "y".into(),
+            columns: axis.clone(),
+            rows: axis,
+            values: (0..n * n).map(|k| f64::from(k % 7)).collect(),
+            colourmap: Colourmap::Sequential,
+            range: (0.0, 6.0),
+            colourbar_label: "v".into(),
+            categories: None,
+            overlays: vec![],
+        };
+        let svg = map.to_svg();
+        assert_eq!(svg.matches("<image").count(), 1);
+        assert!(svg.len() < 200_000, "{}", svg.len());
     }
 }

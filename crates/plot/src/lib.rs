@@ -7,6 +7,7 @@
 
 mod axis;
 mod colour;
+mod contour;
 mod heatmap;
 mod lines;
 mod raster;
@@ -14,6 +15,7 @@ mod svg;
 
 pub use axis::{Axis, Scale};
 pub use colour::{Colour, Colourmap};
+pub use contour::contour;
 pub use heatmap::{Category, Heatmap};
 pub use lines::{LinePlot, Marker, Series};
 pub use raster::{PlotError, embedded_image, png, raster_png};

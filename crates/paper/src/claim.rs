@@ -1,0 +1,107 @@
+//! What the paper states, what we find, and whether they agree.
+
+use serde::Serialize;
+
+/// The verdict on one statement, computed from the numbers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Verdict {
+    Agrees,
+    Disagrees,
+}
+
+/// One statement of the paper set against our numbers.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Claim {
+    /// The paper's words (or their gist) and where.
+    pub statement: String,
+    /// What the paper gives.
+    pub paper: String,
+    /// What we find.
+    pub ours: String,
+    pub verdict: Verdict,
+    /// When they disagree: which side the evidence supports, and why.
+    pub comment: String,
+}
+
+impl Claim {
+    /// A claim whose verdict is `agrees` (computed by the caller).
+    pub fn new(statement: &str, paper: &str, ours: String, agrees: bool, comment: &str) -> Self {
+        Self {
+            statement: statement.into(),
+            paper: paper.into(),
+            ours,
+            verdict: if agrees {
+                Verdict::Agrees
+            } else {
+                Verdict::Disagrees
+            },
+            comment: comment.into(),
+        }
+    }
+}
+
+/// One figure (or group) of the reproduction.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Item {
+    pub id: String,
+    pub title: String,
+    /// Figure stems written (each as `.svg`, `.png`) and data files.
+    pub figures: Vec<String>,
+    pub data: Vec<String>,
+    pub claims: Vec<Claim>,
+    pub notes: Vec<String>,
+}
+
+/// Writes `stem.svg` and `stem.png` into `dir`, returning the stem.
+pub fn figure(dir: &std::path::Path, stem: &str, svg: &str) -> Result<String, crate::PaperError> {
+    impact_plot::write_svg_and_png(&dir.join(stem), svg)?;
+    Ok(stem.to_string())
+}
+
+/// Writes `stem.csv` (a header and rows of numbers) into `dir`.
+pub fn csv(
+    dir: &std::path::Path,
+    stem: &str,
+    header: &str,
+    rows: &[Vec<f64>],
+) -> Result<String, crate::PaperError> {
+    let mut text = String::with_capacity(rows.len() * 40);
+    text.push_str(header);
+    text.push('\n');
+    for r in rows {
+        let cells: Vec<String> = r
+            .iter()
+            .map(|v| {
+                if v.is_finite() {
+                    v.to_string()
+                } else {
+                    String::new()
+                }
+            })
+            .collect();
+        text.push_str(&cells.join(","));
+        text.push('\n');
+    }
+    let name = format!("{stem}.csv");
+    std::fs::write(dir.join(&name), text)?;
+    Ok(name)
+}
+
+/// Least-squares slope and intercept of `ln y` against `ln x`.
+pub fn power_fit(points: &[(f64, f64)]) -> (f64, f64) {
+    let pts: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|(x, y)| *x > 0.0 && *y > 0.0)
+        .map(|(x, y)| (x.ln(), y.ln()))
+        .collect();
+    let n = pts.len() as f64;
+    let (mx, my) = (
+        pts.iter().map(|p| p.0).sum::<f64>() / n,
+        pts.iter().map(|p| p.1).sum::<f64>() / n,
+    );
+    let cov: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    let var: f64 = pts.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    let slope = cov / var;
+    (slope, (my - slope * mx).exp())
+}

@@ -1,0 +1,63 @@
+//! `impact reproduce`: every figure of the paper regenerated from our
+//! engines, each set beside what the paper states about it, with a verdict
+//! computed from the numbers (never written by hand).
+//!
+//! One module per figure group; each writes `DIR/<stem>.svg`, `.png` and
+//! `.csv` and returns an [`Item`] for the report page.
+
+mod appendix_c;
+mod claim;
+mod fig11;
+mod fig2;
+mod fig3;
+mod fig7;
+mod maps;
+mod page;
+mod settings;
+mod visco;
+
+pub use claim::{Claim, Item, Verdict};
+pub use settings::Settings;
+
+use std::path::Path;
+use thiserror::Error;
+
+/// Why a reproduction could not be written.
+#[derive(Debug, Error)]
+pub enum PaperError {
+    #[error(transparent)]
+    Plot(#[from] impact_plot::PlotError),
+    #[error(transparent)]
+    Io(#[from] std::io::Error),
+    #[error("{0}")]
+    Engine(String),
+}
+
+/// One figure group: writes its files into the directory, returns its item.
+type Step = fn(&Path, &Settings) -> Result<Item, PaperError>;
+
+/// Every item, in the paper's order. `progress` is told which figure starts.
+pub fn reproduce(
+    dir: &Path,
+    settings: &Settings,
+    progress: &dyn Fn(&str),
+) -> Result<Vec<Item>, PaperError> {
+    std::fs::create_dir_all(dir)?;
+    let steps: [(&str, Step); 8] = [
+        ("Fig. 2: homogeneous viscoelastic rod", fig2::run),
+        ("Fig. 3: space-time diagrams", fig3::run),
+        ("Figs. 4-6: maps over (x, alpha)", maps::run),
+        ("Fig. 7: x_min and e_min", fig7::run),
+        ("Figs. 8-9: viscoelastic bilayers", visco::run_8_9),
+        ("Fig. 10: e_1 = 0.94, e_2 = 0.72", visco::run_10),
+        ("Fig. 11: finite-size error", fig11::run),
+        ("Appendix C and Fig. 13: rigid bottom", appendix_c::run),
+    ];
+    let mut items = Vec::new();
+    for (label, step) in steps {
+        progress(label);
+        items.push(step(dir, settings)?);
+    }
+    std::fs::write(dir.join("index.html"), page::page(dir, settings, &items))?;
+    Ok(items)
+}
