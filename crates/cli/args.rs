@@ -41,6 +41,8 @@ pub enum Command {
     Diagram(DiagramArgs),
     /// Regenerate every figure of the paper beside what the paper states
     Reproduce(ReproduceArgs),
+    /// What accuracy costs in time: both engines' settings against error and time
+    Cost(CostArgs),
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -477,4 +479,31 @@ pub struct ReproduceArgs {
     /// Worker threads (default: all cores)
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
+}
+
+#[derive(Args, Debug)]
+pub struct CostArgs {
+    /// Scene file (JSON, elastic); default: the canonical bilayer --x/--alpha
+    #[arg(value_name = "SCENE", conflicts_with_all = ["x", "alpha"])]
+    pub scene: Option<PathBuf>,
+    /// Composition x of the canonical bilayer
+    #[arg(long, allow_negative_numbers = true, default_value_t = 0.3)]
+    pub x: f64,
+    /// Stiffness ratio alpha of the canonical bilayer
+    #[arg(long, allow_negative_numbers = true, default_value_t = 0.3)]
+    pub alpha: f64,
+    /// Report directory
+    #[arg(long, value_name = "DIR", default_value = "cost-report")]
+    pub out: PathBuf,
+    /// Error in e the headline asks the chain to reach
+    #[arg(
+        long,
+        value_name = "DE",
+        default_value_t = 1e-3,
+        allow_negative_numbers = true
+    )]
+    pub target: f64,
+    /// A small study (seconds): fewer sizes and tolerances
+    #[arg(long)]
+    pub quick: bool,
 }

@@ -8,6 +8,7 @@
 mod args;
 mod calibrate;
 mod compare;
+mod cost;
 mod diagram;
 mod jobs;
 mod merge;
@@ -71,6 +72,7 @@ fn main() -> ExitCode {
         Command::Merge(a) => merge::merge(a),
         Command::Diagram(a) => diagram::diagram(a),
         Command::Reproduce(a) => reproduce::reproduce(a),
+        Command::Cost(a) => cost::cost(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

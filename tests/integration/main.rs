@@ -3,6 +3,7 @@
 mod chain;
 mod cli_errors;
 mod compare;
+mod cost;
 mod diagram;
 mod docs;
 mod run;

@@ -55,6 +55,7 @@ pub struct Item {
 
 /// Writes `stem.svg` and `stem.png` into `dir`, returning the stem.
 pub fn figure(dir: &std::path::Path, stem: &str, svg: &str) -> Result<String, crate::PaperError> {
+    // stems may name a subdirectory (e.g. `cost/pareto`)
     impact_plot::write_svg_and_png(&dir.join(stem), svg)?;
     Ok(stem.to_string())
 }

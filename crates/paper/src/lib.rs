@@ -7,6 +7,7 @@
 
 mod appendix_c;
 mod claim;
+mod cost;
 mod fig11;
 mod fig2;
 mod fig3;
@@ -43,7 +44,7 @@ pub fn reproduce(
     progress: &dyn Fn(&str),
 ) -> Result<Vec<Item>, PaperError> {
     std::fs::create_dir_all(dir)?;
-    let steps: [(&str, Step); 8] = [
+    let steps: [(&str, Step); 9] = [
         ("Fig. 2: homogeneous viscoelastic rod", fig2::run),
         ("Fig. 3: space-time diagrams", fig3::run),
         ("Figs. 4-6: maps over (x, alpha)", maps::run),
@@ -52,6 +53,7 @@ pub fn reproduce(
         ("Fig. 10: e_1 = 0.94, e_2 = 0.72", visco::run_10),
         ("Fig. 11: finite-size error", fig11::run),
         ("Appendix C and Fig. 13: rigid bottom", appendix_c::run),
+        ("What accuracy costs in time", cost::run),
     ];
     let mut items = Vec::new();
     for (label, step) in steps {

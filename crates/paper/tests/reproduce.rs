@@ -27,7 +27,7 @@ fn rows(path: &std::path::Path) -> Vec<Vec<f64>> {
 fn a_tiny_reproduction_writes_every_file_and_its_numbers_are_the_engines() {
     let d = dir("tiny");
     let items = reproduce(&d, &Settings::tiny(), &|_| {}).unwrap();
-    assert_eq!(items.len(), 8);
+    assert_eq!(items.len(), 9);
     for item in &items {
         for stem in &item.figures {
             for ext in ["svg", "png"] {

@@ -1,0 +1,55 @@
+//! The exact engine: drop tolerance and merge window against error and cost.
+
+use crate::{CostError, CostSettings, timed};
+use impact_model::Rod;
+use impact_wave::{WaveConfig, simulate};
+use serde::Serialize;
+
+/// One setting of the exact engine at one point.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ExactCost {
+    pub point: String,
+    pub drop_tolerance: f64,
+    pub merge_window: f64,
+    /// `|e - e_ref|`, `|t_c - t_c,ref|` against drop 0, merge 0.
+    pub restitution_error: f64,
+    pub contact_time_error: f64,
+    pub events: u64,
+    pub seconds: f64,
+}
+
+/// Drop tolerances then merge windows, each against the untruncated run.
+pub fn exact_study(label: &str, rod: &Rod, s: &CostSettings) -> Result<Vec<ExactCost>, CostError> {
+    let run = |drop: f64, merge: f64| {
+        let config = WaveConfig {
+            drop_tolerance: drop,
+            merge_window: merge,
+            ..WaveConfig::default()
+        };
+        timed(|| simulate(rod, &config).map_err(|e| CostError::Engine(e.to_string())))
+    };
+    let (_, reference) = run(0.0, 0.0)?;
+    let mut settings: Vec<(f64, f64)> = std::iter::once((0.0, 0.0))
+        .chain(s.drop_tolerances.iter().map(|&d| (d, 0.0)))
+        .collect();
+    settings.extend(
+        s.merge_windows
+            .iter()
+            .map(|&m| (WaveConfig::default().drop_tolerance, m)),
+    );
+    settings
+        .into_iter()
+        .map(|(drop, merge)| {
+            let (seconds, o) = run(drop, merge)?;
+            Ok(ExactCost {
+                point: label.to_string(),
+                drop_tolerance: drop,
+                merge_window: merge,
+                restitution_error: (o.restitution - reference.restitution).abs(),
+                contact_time_error: (o.contact_time - reference.contact_time).abs(),
+                events: o.events.unwrap_or(0),
+                seconds,
+            })
+        })
+        .collect()
+}

@@ -1,0 +1,56 @@
+//! How cost grows with the problem: chain time against N, exact-engine
+//! events against `t2 / t1` and against `alpha`.
+
+use crate::{CostError, timed};
+use impact_model::Bilayer;
+use serde::Serialize;
+
+/// Exact-engine work at one bilayer.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Growth {
+    /// `"x"` (x varied at alpha = 0.005) or `"alpha"` (alpha varied at x = 0.5).
+    pub sweep: String,
+    pub x: f64,
+    pub alpha: f64,
+    pub transit_ratio: f64,
+    pub events: u64,
+    pub seconds: f64,
+}
+
+/// Events and time along `x` at small `alpha` (large `t2 / t1`) and along
+/// `alpha` at `x = 0.5`.
+pub fn growth_study() -> Result<Vec<Growth>, CostError> {
+    let mut points: Vec<(&str, f64, f64)> = [0.5, 0.7, 0.8, 0.9, 0.95, 0.98, 0.99, 0.995]
+        .iter()
+        .map(|&x| ("x", x, 0.005))
+        .collect();
+    points.extend(
+        [
+            0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 0.8, 0.95, 0.99,
+        ]
+        .iter()
+        .map(|&a| ("alpha", 0.5, a)),
+    );
+    points
+        .into_iter()
+        .map(|(sweep, x, alpha)| {
+            let b = Bilayer { x, alpha };
+            let rod = b
+                .scene()
+                .validate()
+                .map_err(|e| CostError::Engine(e.to_string()))?;
+            let (seconds, o) = timed(|| {
+                impact_wave::simulate(&rod, &impact_wave::WaveConfig::default())
+                    .map_err(|e| CostError::Engine(e.to_string()))
+            })?;
+            Ok(Growth {
+                sweep: sweep.to_string(),
+                x,
+                alpha,
+                transit_ratio: b.transit_ratio(),
+                events: o.events.unwrap_or(0),
+                seconds,
+            })
+        })
+        .collect()
+}
