@@ -165,7 +165,8 @@ impl ExactField {
         let mut count = 0;
         for k in 0..ub.len() - 1 {
             let (u0, u1) = (ub[k], ub[k + 1]);
-            if u0 >= 2.0 * t_end - t + 1e-300 || u1 <= -t {
+            // a cell needs u <= t_end (take d = u - T in t = (u + d + T)/2 <= t_end)
+            if u0 >= t_end || u1 <= -t {
                 continue;
             }
             let a = if k == 0 {
@@ -245,6 +246,50 @@ fn clip(poly: &[(f64, f64)], hu: f64, hd: f64, c: f64) -> Vec<(f64, f64)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Regression: windows shorter than a layer's transit time lost the
+    /// cells behind every up front born in the window's second half.
+    #[test]
+    fn cells_tile_the_whole_window_even_when_it_is_shorter_than_a_transit() {
+        use impact_wave::{Record, WaveConfig, WaveEngine};
+        let rod = impact_model::Bilayer::new(0.3, 0.01)
+            .unwrap()
+            .scene()
+            .validate()
+            .unwrap();
+        let mut e = WaveEngine::new(
+            &rod,
+            WaveConfig {
+                record: Record {
+                    wall: false,
+                    fronts: true,
+                },
+                ..WaveConfig::default()
+            },
+        )
+        .unwrap();
+        e.run().unwrap();
+        let field = ExactField::new(&rod, e.recording()).unwrap();
+        let t2 = rod.layers()[1].transit_time;
+        for t_end in [0.3 * t2, 0.9 * t2, 2.5 * t2] {
+            let area: f64 = field
+                .cells(t_end)
+                .iter()
+                .map(|c| {
+                    let p = &c.corners;
+                    0.5 * (0..p.len())
+                        .map(|i| p[i].0 * p[(i + 1) % p.len()].1 - p[(i + 1) % p.len()].0 * p[i].1)
+                        .sum::<f64>()
+                        .abs()
+                })
+                .sum();
+            let expected = t_end * rod.total_length();
+            assert!(
+                (area - expected).abs() < 1e-9 * expected,
+                "t_end = {t_end}: area {area} vs {expected}"
+            );
+        }
+    }
 
     #[test]
     fn clipping_a_square_by_a_diagonal_keeps_a_triangle() {

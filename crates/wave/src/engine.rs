@@ -379,8 +379,22 @@ impl WaveEngine {
             }
             EventKey::Reconnection => {
                 self.queue.pop();
-                self.reconnect(t)?;
-                StepKind::Reconnected
+                let wall_lane = Lane::index(0, Direction::Down);
+                if self.lanes[wall_lane]
+                    .head_arrival()
+                    .is_some_and(|a| a <= t + self.simultaneity)
+                {
+                    // A front reaches the bottom as it lands: one event. It
+                    // reflects off the still-free bottom first; if the bottom
+                    // still moves down it lands at once (the landing is
+                    // rescheduled at t), else the flight goes on. Either
+                    // order gives the same state; this one gives no
+                    // zero-length contact.
+                    self.boundary_event(0, t)?
+                } else {
+                    self.reconnect(t)?;
+                    StepKind::Reconnected
+                }
             }
             EventKey::Escape => {
                 self.queue.pop();

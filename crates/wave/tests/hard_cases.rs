@@ -150,3 +150,56 @@ fn viscous_layers_are_refused() {
     let err = simulate(&scene.validate().unwrap(), &WaveConfig::default()).unwrap_err();
     assert!(err.to_string().contains("layers[1] is viscous"));
 }
+
+/// A landing and a wall arrival at the same instant are one event: the
+/// history has no zero-length contact, whichever rounding puts first.
+#[test]
+fn a_landing_and_an_arrival_together_leave_no_zero_length_contact() {
+    // scan a region with many landings: any contact interval must be longer
+    // than the simultaneity window
+    let mut landings = 0;
+    for i in 0..60 {
+        let x = 0.3 + 0.01 * f64::from(i);
+        for alpha in [0.01, 0.02, 0.05] {
+            let o = run(x, alpha);
+            assert_valid(&o);
+            let window = 1e-9
+                * o.transit_times
+                    .iter()
+                    .copied()
+                    .fold(f64::INFINITY, f64::min);
+            for c in &o.contacts[1..] {
+                landings += 1;
+                assert!(
+                    c[1] - c[0] > window,
+                    "x = {x}, alpha = {alpha}: zero-length contact {c:?}"
+                );
+            }
+        }
+    }
+    assert!(
+        landings > 100,
+        "the scan must contain landings ({landings})"
+    );
+}
+
+/// The same, forced: at x = x_1 (t1 = t2 exactly) in the lower region fronts
+/// from both layers meet the bottom at commensurate times.
+#[test]
+fn commensurate_landings_give_the_same_answer_on_both_sides() {
+    for alpha in [0.02, 0.05] {
+        for n in 1..=3 {
+            let x = theory::x_n(n, alpha);
+            let at = run(x, alpha);
+            let near = run(x + 1e-10, alpha);
+            assert!(
+                (at.restitution - near.restitution).abs() < 1e-6,
+                "x_{n} at {alpha}"
+            );
+            assert_eq!(
+                at.bounces, near.bounces,
+                "x_{n} at {alpha}: {at:?}\n{near:?}"
+            );
+        }
+    }
+}
