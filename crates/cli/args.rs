@@ -253,15 +253,8 @@ impl WaveArgs {
 
 #[derive(Args, Debug)]
 pub struct RunArgs {
-    /// Scene file (JSON: impact_speed and layers, bottom first)
-    #[arg(value_name = "SCENE", conflicts_with_all = ["x", "alpha"])]
-    pub scene: Option<PathBuf>,
-    /// Composition x = L2 / L of the canonical bilayer, in (0, 1)
-    #[arg(long, allow_negative_numbers = true, requires = "alpha")]
-    pub x: Option<f64>,
-    /// Stiffness ratio alpha = E2 / (E1 + E2) of the canonical bilayer, in (0, 1)
-    #[arg(long, allow_negative_numbers = true, requires = "x")]
-    pub alpha: Option<f64>,
+    #[command(flatten)]
+    pub subject: SceneArgs,
     #[command(flatten)]
     pub viscosity: ViscosityArgs,
     /// Print one JSON object on stdout instead of the summary
@@ -420,15 +413,8 @@ pub struct CalibrateArgs {
 
 #[derive(Args, Debug)]
 pub struct DiagramArgs {
-    /// Scene file (JSON)
-    #[arg(value_name = "SCENE", conflicts_with_all = ["x", "alpha"])]
-    pub scene: Option<PathBuf>,
-    /// Composition x = L2 / L of the canonical bilayer, in (0, 1)
-    #[arg(long, allow_negative_numbers = true, requires = "alpha")]
-    pub x: Option<f64>,
-    /// Stiffness ratio alpha = E2 / (E1 + E2) of the canonical bilayer, in (0, 1)
-    #[arg(long, allow_negative_numbers = true, requires = "x")]
-    pub alpha: Option<f64>,
+    #[command(flatten)]
+    pub subject: SceneArgs,
     /// Output figure: .svg (vector, real text), .png, or .html (self-contained page with the event table)
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
@@ -506,4 +492,41 @@ pub struct CostArgs {
     /// A small study (seconds): fewer sizes and tolerances
     #[arg(long)]
     pub quick: bool,
+}
+
+/// What to simulate: a scene file, or the canonical bilayer.
+#[derive(Args, Debug, Clone)]
+pub struct SceneArgs {
+    /// Scene file (JSON: impact_speed and layers, bottom first)
+    #[arg(value_name = "SCENE", conflicts_with_all = ["x", "alpha"])]
+    pub scene: Option<PathBuf>,
+    /// Composition x = L2 / L of the canonical bilayer, in (0, 1)
+    #[arg(long, allow_negative_numbers = true, requires = "alpha")]
+    pub x: Option<f64>,
+    /// Stiffness ratio alpha = E2 / (E1 + E2) of the canonical bilayer, in (0, 1)
+    #[arg(long, allow_negative_numbers = true, requires = "x")]
+    pub alpha: Option<f64>,
+}
+
+impl SceneArgs {
+    /// The scene file read and parsed, or the canonical bilayer (not yet
+    /// validated), with a title. Every failure is an input error.
+    pub fn load(
+        &self,
+    ) -> anyhow::Result<(impact_model::Scene, Option<impact_model::Bilayer>, String)> {
+        match (&self.scene, self.x, self.alpha) {
+            (Some(path), _, _) => Ok((
+                crate::run::read_scene(path)?,
+                None,
+                path.display().to_string(),
+            )),
+            (None, Some(x), Some(alpha)) => {
+                let b = impact_model::Bilayer::new(x, alpha).map_err(|e| input(e.to_string()))?;
+                Ok((b.scene(), Some(b), format!("x = {x}, alpha = {alpha}")))
+            }
+            _ => Err(input(
+                "give a scene file or both --x and --alpha (see --help)",
+            )),
+        }
+    }
 }

@@ -3,10 +3,8 @@
 use crate::args::{DiagramArgs, DiagramEngine};
 use crate::input;
 use crate::output::write_atomically;
-use crate::run::read_scene;
 use anyhow::Context;
 use impact_diagram::{Diagram, DiagramOptions, chain_run, exact_run, page};
-use impact_model::Bilayer;
 use std::io::Write;
 
 /// Checks the window and scale flags.
@@ -36,18 +34,7 @@ fn check_flags(a: &DiagramArgs) -> anyhow::Result<()> {
 }
 
 pub fn diagram(a: DiagramArgs) -> anyhow::Result<()> {
-    let (scene, name) = match (&a.scene, a.x, a.alpha) {
-        (Some(path), _, _) => (read_scene(path)?, path.display().to_string()),
-        (None, Some(x), Some(alpha)) => {
-            let b = Bilayer::new(x, alpha).map_err(|e| input(e.to_string()))?;
-            (b.scene(), format!("x = {x}, alpha = {alpha}"))
-        }
-        _ => {
-            return Err(input(
-                "give a scene file or both --x and --alpha (see --help)",
-            ));
-        }
-    };
+    let (scene, _, name) = a.subject.load()?;
     let rod = scene.validate().map_err(|e| input(e.to_string()))?;
     let ext = a.out.extension().and_then(|e| e.to_str()).unwrap_or("");
     if !matches!(ext, "svg" | "png" | "html") {

@@ -5,7 +5,7 @@ use crate::input;
 use crate::output::{summary, write_atomically};
 use anyhow::Context;
 use impact_chain::{ChainEngine, ChainLayout, ChainRecord};
-use impact_model::{Bilayer, Scene};
+use impact_model::Scene;
 use impact_study::Engine;
 use impact_wave::{Record, WaveEngine};
 use std::io::Write;
@@ -18,27 +18,20 @@ pub fn read_scene(path: &std::path::Path) -> anyhow::Result<Scene> {
 }
 
 pub fn run(a: RunArgs) -> anyhow::Result<()> {
-    let (scene, title) = match (&a.scene, a.x, a.alpha) {
-        (Some(_), _, _) if a.viscosity.given() => {
-            return Err(input(
-                "--tau1/--tau2/--e1/--e2 apply to --x/--alpha only: give viscosity in the scene file",
-            ));
-        }
-        (Some(path), _, _) => (read_scene(path)?, format!("Scene {}", path.display())),
-        (None, Some(x), Some(alpha)) => {
-            let b = Bilayer::new(x, alpha).map_err(|e| input(e.to_string()))?;
-            (
-                a.viscosity.viscosity().scene(b),
-                format!(
-                    "Canonical bilayer x = {x}, alpha = {alpha} (L = 1, rho = 1, E1 = 1 - alpha, E2 = alpha, v_b = 1)"
-                ),
-            )
-        }
-        _ => {
-            return Err(input(
-                "give a scene file or both --x and --alpha (see --help)",
-            ));
-        }
+    if a.subject.scene.is_some() && a.viscosity.given() {
+        return Err(input(
+            "--tau1/--tau2/--e1/--e2 apply to --x/--alpha only: give viscosity in the scene file",
+        ));
+    }
+    let (scene, bilayer, name) = a.subject.load()?;
+    let (scene, title) = match bilayer {
+        Some(b) => (
+            a.viscosity.viscosity().scene(b),
+            format!(
+                "Canonical bilayer {name} (L = 1, rho = 1, E1 = 1 - alpha, E2 = alpha, v_b = 1)"
+            ),
+        ),
+        None => (scene, format!("Scene {name}")),
     };
     let rod = scene.validate().map_err(|e| input(e.to_string()))?;
     let trace = a.wall_trace.is_some();
