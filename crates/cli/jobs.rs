@@ -47,13 +47,17 @@ pub fn shard(a: &JournalArgs) -> anyhow::Result<Shard> {
     })
 }
 
-/// Opens the journal at `path`: resumed with `--resume`, else started afresh.
+/// Opens the journal at `path`: resumed with `--resume`. Without it an
+/// unsharded run starts afresh, but a shard's journal is never deleted: the
+/// run stops and says to add `--resume` (hours of points may be in it). A
+/// file cut before its header line ends is just started again.
 pub fn open_journal<T: DeserializeOwned>(
     path: &Path,
     header: &JournalHeader,
     resume: bool,
 ) -> anyhow::Result<(Journal, BTreeMap<usize, T>)> {
-    if !resume && path.exists() {
+    let torn_header = path.exists() && !std::fs::read(path)?.contains(&b'\n');
+    if torn_header || (!resume && path.exists() && header.shard == impact_study::Shard::ALL) {
         std::fs::remove_file(path)?;
     }
     if resume && !path.exists() {
@@ -63,7 +67,9 @@ pub fn open_journal<T: DeserializeOwned>(
         );
     }
     Journal::open(path, header, resume).map_err(|e| match e {
-        impact_study::JournalError::Mismatch { .. } => input(e.to_string()),
+        impact_study::JournalError::Mismatch { .. } | impact_study::JournalError::Exists(_) => {
+            input(e.to_string())
+        }
         e => anyhow::Error::new(e),
     })
 }

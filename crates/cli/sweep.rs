@@ -76,7 +76,7 @@ pub fn sweep(a: SweepArgs) -> anyhow::Result<()> {
             shard.count,
             done.len(),
             if shard == Shard::ALL {
-                ""
+                "; write the rows a plain sweep would with `impact merge FILE --out rows.csv`"
             } else {
                 "; join the shards with `impact merge`"
             }

@@ -500,3 +500,37 @@ fn bad_compare_and_shard_input() {
     }
     assert!(!Path::new(o).exists(), "nothing written for bad input");
 }
+
+/// Forgetting --resume on a shard must not delete its finished points.
+#[test]
+fn rerunning_a_shard_without_resume_keeps_its_journal() {
+    let dir = scratch("shard-keep");
+    let j = dir.join("part.jsonl");
+    let args = [
+        "sweep",
+        "--x",
+        "0.2:0.6:0.2",
+        "--alpha",
+        "0.3",
+        "--shard",
+        "1/2",
+        "--out",
+        j.to_str().unwrap(),
+    ];
+    ok(&args);
+    let before = std::fs::read(&j).unwrap();
+    let out = impact(&args);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("--resume"), "{}", stderr(&out));
+    assert_eq!(
+        std::fs::read(&j).unwrap(),
+        before,
+        "the journal is untouched"
+    );
+    // a journal cut inside its header line is started again
+    std::fs::write(&j, br#"{"journal":"impact-jou"#).unwrap();
+    let mut resume = args.to_vec();
+    resume.push("--resume");
+    ok(&resume);
+    assert!(std::fs::read_to_string(&j).unwrap().lines().count() >= 2);
+}

@@ -249,20 +249,22 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
                 .is_some_and(|tc| (tc - 2.0 * t1).abs() < 1e-9)
         },
     );
+    // the upper region starts at the root of 1 + 2 R12 - 2 T21 T12 (0.8228)
+    let upper = theory::upper_boundary_alpha();
     let (upper_tc, nu) = share(
         &rows,
-        |r| r.alpha > 0.82,
+        |r| r.alpha > upper,
         |r| r.reduced_contact_time.is_some_and(|t| t > 1.0 + 1e-9),
     );
-    let even = |v: f64| (2..=20).step_by(2).any(|k| near(v, f64::from(k)));
+    let even = |v: f64| (4..=20).step_by(2).any(|k| near(v, f64::from(k)));
     let (top_right, ntr) = share(
         &rows,
-        |r| r.alpha > 0.82 && r.x > 0.5,
+        |r| r.alpha > upper && r.x > 0.5,
         |r| r.n1.is_some_and(even),
     );
     let (top_left, ntl) = share(
         &rows,
-        |r| r.alpha > 0.82 && r.x < 0.35,
+        |r| r.alpha > upper && r.x < 0.35,
         |r| {
             r.n1.is_some_and(|v| (2.0..=4.0).contains(&v) && (v - v.round()).abs() > 1e-6)
         },
@@ -281,7 +283,7 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
         );
     let min_upper = rows
         .iter()
-        .filter(|r| r.alpha > 0.82)
+        .filter(|r| r.alpha > upper)
         .filter_map(|r| r.restitution)
         .fold(f64::INFINITY, f64::min);
     let min_central = rows
@@ -314,21 +316,21 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
         Claim::new(
             "Fig. 4(a): reduced t_c > 1 for alpha >~ 0.8, whatever x",
             "reduced t_c > 1",
-            format!("{} (alpha > 0.82)", pct(upper_tc, nu)),
+            format!("{} (alpha > {upper:.4})", pct(upper_tc, nu)),
             upper_tc > 0.9,
             "",
         ),
         Claim::new(
             "Fig. 4(b): in the top-right corner n1 takes mainly even values 4, 6, 8",
-            "n1 even",
-            format!("{} (alpha > 0.82, x > 0.5)", pct(top_right, ntr)),
+            "n1 in 4, 6, 8, ...",
+            format!("{} (alpha > {upper:.4}, x > 0.5)", pct(top_right, ntr)),
             top_right > 0.5,
             "",
         ),
         Claim::new(
             "Fig. 4(b): in the top-left corner n1 is not an integer, in [2, 4]",
             "n1 in (2, 4), not integer",
-            format!("{} (alpha > 0.82, x < 0.35)", pct(top_left, ntl)),
+            format!("{} (alpha > {upper:.4}, x < 0.35)", pct(top_left, ntl)),
             top_left > 0.5,
             "",
         ),
@@ -359,7 +361,7 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
         Claim::new(
             "Fig. 6: in the upper region e can be as low as 0.8",
             "min e ~ 0.8 (alpha > 0.8)",
-            format!("min e = {min_upper:.3} (alpha > 0.82)"),
+            format!("min e = {min_upper:.3} (alpha > {upper:.4})"),
             (min_upper - 0.8).abs() < 0.05,
             "",
         ),

@@ -197,8 +197,10 @@ pub fn run_8_9(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
             .collect::<Vec<_>>()
             .join(", ")
     };
-    let e2_ok = t_e2.windows(2).all(|w| w[0].1 >= w[1].1);
-    let e1_ok = t_e1.windows(2).all(|w| w[0].1 <= w[1].1);
+    // monotone, and actually moving between the extreme values
+    let moves = |t: &[(f64, f64)]| t.len() >= 2 && t[0].1 != t[t.len() - 1].1;
+    let e2_ok = t_e2.windows(2).all(|w| w[0].1 >= w[1].1) && moves(&t_e2);
+    let e1_ok = t_e1.windows(2).all(|w| w[0].1 <= w[1].1) && moves(&t_e1);
     // Sec. VII: by construction e(x -> 0) = e1 and e(x -> 1) = e2; linear
     // extrapolation of each curve from its two end points
     let mut ends = Vec::new();
@@ -347,12 +349,22 @@ pub fn run_10(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
     ];
     // staircase: N_b rises with x overall (rank correlation), single-step dips
     // are chain noise
+    // Spearman ranks: tied values share their average rank
     let ranks = |v: Vec<f64>| {
         let mut idx: Vec<usize> = (0..v.len()).collect();
         idx.sort_by(|&a, &b| v[a].total_cmp(&v[b]));
         let mut r = vec![0.0; v.len()];
-        for (rank, &i) in idx.iter().enumerate() {
-            r[i] = rank as f64;
+        let mut start = 0;
+        while start < idx.len() {
+            let mut end = start + 1;
+            while end < idx.len() && v[idx[end]] == v[idx[start]] {
+                end += 1;
+            }
+            let mean = 0.5 * (start + end - 1) as f64;
+            for &i in &idx[start..end] {
+                r[i] = mean;
+            }
+            start = end;
         }
         r
     };
@@ -378,7 +390,7 @@ pub fn run_10(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
             curve[0].1.bounces,
             curve[curve.len() - 1].1.bounces
         ),
-        rho > 0.6,
+        rho > 0.6 && curve[curve.len() - 1].1.bounces > curve[0].1.bounces,
         "",
     )];
     Ok(Item {

@@ -136,14 +136,22 @@ pub struct ComparePoint {
 }
 
 impl ComparePoint {
-    /// The finest chain outcome.
-    pub fn finest(&self) -> Option<&Outcome> {
-        self.chain.last()
+    /// Both engines ran at every size.
+    pub fn complete(&self) -> bool {
+        self.exact.is_some() && self.chain.len() == self.sizes.len() && self.error.is_none()
     }
 
-    /// `e_chain - e_exact` at the finest size.
+    /// The finest chain outcome (none when any size failed).
+    pub fn finest(&self) -> Option<&Outcome> {
+        self.chain.last().filter(|_| self.complete())
+    }
+
+    /// `e_chain - e_exact` at the finest size (none when any size failed).
     pub fn de(&self) -> Option<f64> {
-        self.restitution_difference.last().copied()
+        self.restitution_difference
+            .last()
+            .copied()
+            .filter(|_| self.complete())
     }
 
     /// Filtered bounce counts agree at the finest size.
@@ -280,9 +288,13 @@ fn extrapolate(sizes: &[usize], chain: &[Outcome], observed: Option<f64>) -> Opt
     let r = sizes[k - 1] as f64 / sizes[k - 2] as f64;
     let p = if k >= 3 {
         let (d1, d2) = ((e[k - 2] - e[k - 3]).abs(), (e[k - 1] - e[k - 2]).abs());
-        let r0 = sizes[k - 2] as f64 / sizes[k - 3] as f64;
+        let n = [
+            sizes[k - 3] as f64,
+            sizes[k - 2] as f64,
+            sizes[k - 1] as f64,
+        ];
         if d1 > 0.0 && d2 > 0.0 {
-            (d1 / d2).ln() / r0.ln()
+            self_consistent_order(n, d1 / d2)
         } else {
             observed?
         }
@@ -291,6 +303,30 @@ fn extrapolate(sizes: &[usize], chain: &[Outcome], observed: Option<f64>) -> Opt
     };
     let p = p.clamp(0.25, 4.0);
     Some(e[k - 1] + (e[k - 1] - e[k - 2]) / (r.powf(p) - 1.0))
+}
+
+/// The order `p` of `e(N) = e_inf + C N^-p` through three sizes `n` whose
+/// successive differences have ratio `q = |e2 - e1| / |e3 - e2|`: the root of
+/// `(n1^-p - n2^-p) / (n2^-p - n3^-p) = q`, by bisection on `[0.25, 4]`, for
+/// any spacing of the sizes.
+fn self_consistent_order(n: [f64; 3], q: f64) -> f64 {
+    let ratio = |p: f64| (n[0].powf(-p) - n[1].powf(-p)) / (n[1].powf(-p) - n[2].powf(-p));
+    let (mut lo, mut hi) = (0.25, 4.0);
+    if q <= ratio(lo) {
+        return lo;
+    }
+    if q >= ratio(hi) {
+        return hi;
+    }
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if ratio(mid) < q {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
 }
 
 fn classify(p: &ComparePoint, s: &CompareSettings) -> Verdict {
@@ -410,6 +446,16 @@ pub fn summarize(points: &[ComparePoint]) -> Summary {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Regression: uneven sizes (250, 1000, 2000) were given the order
+    /// ln(d1/d2) / ln(N2/N1), which assumes even spacing.
+    #[test]
+    fn uneven_sizes_recover_the_order() {
+        let sizes = [250.0, 1000.0, 2000.0];
+        let e = |n: f64| 1.0 - 0.5 / n;
+        let q = (e(sizes[1]) - e(sizes[0])).abs() / (e(sizes[2]) - e(sizes[1])).abs();
+        assert!((self_consistent_order(sizes, q) - 1.0).abs() < 1e-9);
+    }
 
     #[test]
     fn order_and_extrapolation_recover_a_power_law() {

@@ -160,7 +160,7 @@ impl Row {
 
     /// One CSV line; absent values are empty cells. Floats use Rust's
     /// shortest round-trip form, so the text is deterministic.
-    pub fn csv(&self) -> String {
+    pub fn csv(&self, timing: bool) -> String {
         fn cell<T: ToString>(v: &Option<T>) -> String {
             v.as_ref().map_or_else(String::new, T::to_string)
         }
@@ -182,8 +182,12 @@ impl Row {
             cell(&self.dropped_fronts),
             cell(&self.merged_fronts),
         ];
-        if let Some(t) = self.elapsed_seconds {
-            cells.push(t.to_string());
+        if timing {
+            // failed rows have no time: an empty cell keeps the columns aligned
+            cells.push(
+                self.elapsed_seconds
+                    .map_or_else(String::new, |t| t.to_string()),
+            );
         }
         // errors are free text: quote them
         cells.push(
@@ -222,7 +226,7 @@ impl RowFormat {
             RowFormat::Csv => {
                 writeln!(out, "{}", Row::csv_header(timing))?;
                 for r in rows {
-                    writeln!(out, "{}", r.csv())?;
+                    writeln!(out, "{}", r.csv(timing))?;
                 }
             }
             RowFormat::JsonLines => {
@@ -304,7 +308,21 @@ mod tests {
             true,
         );
         assert_eq!(
-            row.csv().split(',').count(),
+            row.csv(true).split(',').count(),
+            Row::csv_header(true).split(',').count()
+        );
+        // regression: a failed row had one cell fewer than the header
+        let lost = Row::new(
+            Bilayer {
+                x: 0.4,
+                alpha: 0.05,
+            },
+            "wave",
+            Err("no".into()),
+            true,
+        );
+        assert_eq!(
+            lost.csv(true).split(',').count(),
             Row::csv_header(true).split(',').count()
         );
         let failed = Row::new(
@@ -316,6 +334,6 @@ mod tests {
             Err("a, \"b\"".into()),
             false,
         );
-        assert!(failed.csv().ends_with("\"a, \"\"b\"\"\""));
+        assert!(failed.csv(false).ends_with("\"a, \"\"b\"\"\""));
     }
 }
