@@ -580,23 +580,7 @@ impl Diagram {
             "none",
             r#"stroke="black" stroke-width="1""#,
         );
-        for (v, label) in t.ticks() {
-            svg.line(
-                (px(v), TOP + PANEL_H),
-                (px(v), TOP + PANEL_H + 5.0),
-                "black",
-                0.8,
-                "",
-            );
-            svg.text(
-                px(v),
-                TOP + PANEL_H + 17.0,
-                &label,
-                10.0,
-                Anchor::Middle,
-                "",
-            );
-        }
+        t.draw_below(svg, px, TOP + PANEL_H, 10.0);
         svg.text(
             x0 + PANEL_W / 2.0,
             TOP + PANEL_H + 31.0,
@@ -616,10 +600,7 @@ impl Diagram {
                 r##"class="transit-tick" fill="#1a5276""##,
             );
         }
-        for (v, label) in y.ticks() {
-            svg.line((x0 - 5.0, py(v)), (x0, py(v)), "black", 0.8, "");
-            svg.text(x0 - 8.0, py(v) + 4.0, &label, 10.0, Anchor::End, "");
-        }
+        y.draw_left(svg, py, x0, 10.0);
         svg.vertical_text(x0 - 45.0, TOP + PANEL_H / 2.0, &y.label, 11.0);
         for (i, l) in self.rod.layers().iter().enumerate() {
             svg.text(
@@ -748,19 +729,8 @@ impl Diagram {
             "none",
             r#"stroke="black" stroke-width="1""#,
         );
-        for (v, label) in t.ticks() {
-            svg.line(
-                (px(v), top + WALL_H),
-                (px(v), top + WALL_H + 5.0),
-                "black",
-                0.8,
-                "",
-            );
-            svg.text(px(v), top + WALL_H + 17.0, &label, 10.0, Anchor::Middle, "");
-        }
-        for (v, label) in y.ticks() {
-            svg.text(LEFT - 8.0, py(v) + 4.0, &label, 10.0, Anchor::End, "");
-        }
+        t.draw_below(svg, &px, top + WALL_H, 10.0);
+        y.draw_left(svg, &py, LEFT, 10.0);
         svg.vertical_text(LEFT - 45.0, top + WALL_H / 2.0, &y.label, 11.0);
         svg.text(
             LEFT + w,

@@ -114,6 +114,32 @@ impl Axis {
     }
 }
 
+impl Axis {
+    /// Ticks and their labels below a horizontal axis at height `y` (pixels),
+    /// `px` mapping values to pixels.
+    pub fn draw_below(&self, svg: &mut crate::Svg, px: &dyn Fn(f64) -> f64, y: f64, font: f64) {
+        for (v, label) in self.ticks() {
+            svg.line((px(v), y), (px(v), y + 5.0), "black", 0.8, "");
+            svg.text(
+                px(v),
+                y + font + 7.0,
+                &label,
+                font,
+                crate::Anchor::Middle,
+                "",
+            );
+        }
+    }
+
+    /// Ticks and their labels left of a vertical axis at `x` (pixels).
+    pub fn draw_left(&self, svg: &mut crate::Svg, py: &dyn Fn(f64) -> f64, x: f64, font: f64) {
+        for (v, label) in self.ticks() {
+            svg.line((x - 5.0, py(v)), (x, py(v)), "black", 0.8, "");
+            svg.text(x - 8.0, py(v) + 4.0, &label, font, crate::Anchor::End, "");
+        }
+    }
+}
+
 /// Shortest readable form of a tick value.
 fn short(v: f64) -> String {
     if v == 0.0 {

@@ -201,16 +201,8 @@ pub(crate) fn frame(
         "none",
         r#"stroke="black" stroke-width="1""#,
     );
-    for (v, label) in x.ticks() {
-        let xx = px(v);
-        svg.line((xx, TOP + SIZE), (xx, TOP + SIZE + 5.0), "black", 0.8, "");
-        svg.text(xx, TOP + SIZE + 18.0, &label, 11.0, Anchor::Middle, "");
-    }
-    for (v, label) in y.ticks() {
-        let yy = py(v);
-        svg.line((LEFT - 5.0, yy), (LEFT, yy), "black", 0.8, "");
-        svg.text(LEFT - 8.0, yy + 4.0, &label, 11.0, Anchor::End, "");
-    }
+    x.draw_below(svg, &px, TOP + SIZE, 11.0);
+    y.draw_left(svg, &py, LEFT, 11.0);
     svg.text(
         LEFT + SIZE / 2.0,
         TOP + SIZE + 42.0,
