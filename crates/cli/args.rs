@@ -4,8 +4,9 @@
 use crate::input;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use impact_chain::{ChainConfig, ChainRecord, ChainStop};
+use impact_rigid::{RigidConfig, RigidStop};
 use impact_study::{BilayerViscosity, Engine};
-use impact_wave::{Record, StopRule, WaveConfig};
+use impact_wave::{Precision, Record, Resolution, StopRule, WaveConfig};
 use std::path::PathBuf;
 
 #[derive(Parser, Debug)]
@@ -53,12 +54,14 @@ pub enum EngineChoice {
     Wave,
     /// The paper's discrete Beeman mass-spring(-dashpot) chain
     Chain,
+    /// The rigid-bottom limit: the bottom layer a rigid mass under the elastic stack (elastic scenes of 2+ layers)
+    RigidBottom,
 }
 
 /// Settings of the exact engine.
 #[derive(Args, Debug, Clone)]
 pub struct WaveArgs {
-    /// Drop fronts whose velocity jump is below this fraction of v_b (reported in the output)
+    /// Drop fronts whose velocity jump is below this fraction of v_b (accounted for in the error bound)
     #[arg(
         long,
         value_name = "FRACTION",
@@ -66,17 +69,41 @@ pub struct WaveArgs {
         allow_negative_numbers = true
     )]
     pub drop_tolerance: f64,
-    /// Merge fronts born within this many min(t_i) of each other in a layer (0: exact)
-    #[arg(
-        long,
-        value_name = "FRACTION",
-        default_value_t = 0.0,
-        allow_negative_numbers = true
-    )]
-    pub merge_window: f64,
-    /// Give up after this many events
-    #[arg(long, value_name = "N", default_value_t = 10_000_000)]
+    /// Exact engine: auto (exact when it fits, else merged fronts with a measured error), exact, or merged
+    #[arg(long, value_enum, default_value_t = ResolutionChoice::Auto)]
+    pub resolution: ResolutionChoice,
+    /// Merge fronts of a layer born within this fraction of its transit time (implies --resolution merged)
+    #[arg(long, value_name = "FRACTION", allow_negative_numbers = true)]
+    pub merge_window: Option<f64>,
+    /// Events a merged run may take under --resolution auto (the windows are chosen from it)
+    #[arg(long, value_name = "N", default_value_t = 4_000_000)]
+    pub event_budget: u64,
+    /// Arithmetic: checked (double, repeated in double-double when rounding may matter), double, double-double
+    #[arg(long, value_enum, default_value_t = PrecisionChoice::Checked)]
+    pub precision: PrecisionChoice,
+    /// Give a run up after this many events
+    #[arg(long, value_name = "N", default_value_t = 200_000_000)]
     pub max_events: u64,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ResolutionChoice {
+    /// Exact when the exact run takes at most 2e5 events, else merged under the event budget
+    Auto,
+    /// Never merge fronts (fails where fronts multiply without bound)
+    Exact,
+    /// Merge fronts within --merge-window (default 1e-2), error measured at twice the window
+    Merged,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PrecisionChoice {
+    /// Double precision, repeated in double-double when decisions came near grazing or the rod chattered
+    Checked,
+    /// Double precision only (rounding estimated a priori)
+    Double,
+    /// Double-double (about 32 digits) throughout
+    DoubleDouble,
 }
 
 /// Settings of the chain.
@@ -161,6 +188,13 @@ impl EngineArgs {
                 }
                 Ok(Engine::Wave(config))
             }
+            (EngineChoice::RigidBottom, true) => Err(input(
+                "--engine rigid-bottom: the scene has a viscous layer, and the rigid-bottom model handles elastic layers only (use --engine chain or auto)",
+            )),
+            (EngineChoice::RigidBottom, false) => Ok(Engine::RigidBottom(RigidConfig {
+                stop: horizon.map_or(RigidStop::Escape, |factor| RigidStop::Horizon { factor }),
+                ..RigidConfig::default()
+            })),
             (EngineChoice::Chain, _) | (EngineChoice::Auto, true) => {
                 let c = &self.chain;
                 if !(c.dt_factor.is_finite() && c.dt_factor > 0.0 && c.dt_factor <= 10.0) {
@@ -237,13 +271,44 @@ impl WaveArgs {
                 )))
             }
         };
-        if self.max_events == 0 {
-            return Err(input("--max-events must be at least 1 (got 0)"));
+        if self.max_events == 0 || self.event_budget == 0 {
+            return Err(input(
+                "--max-events and --event-budget must be at least 1 (got 0)",
+            ));
         }
+        let resolution = match (self.resolution, self.merge_window) {
+            (ResolutionChoice::Exact, Some(_)) => {
+                return Err(input(
+                    "--merge-window merges fronts: it cannot go with --resolution exact",
+                ));
+            }
+            (ResolutionChoice::Exact, None) => Resolution::Exact,
+            (ResolutionChoice::Auto, None) => Resolution::Auto {
+                exact_events: 200_000,
+                budget_events: self.event_budget,
+            },
+            (_, window) => {
+                let w = window.unwrap_or(1e-2);
+                if !(w.is_finite() && w > 0.0 && w <= 1.0) {
+                    return Err(input(format!(
+                        "--merge-window must be a number in (0, 1] (got {w})"
+                    )));
+                }
+                Resolution::Merged {
+                    per_transit: w,
+                    per_longest: w.min(1e-3),
+                }
+            }
+        };
         Ok(WaveConfig {
             stop: StopRule::Escape,
             drop_tolerance: nonneg("drop-tolerance", self.drop_tolerance)?,
-            merge_window: nonneg("merge-window", self.merge_window)?,
+            resolution,
+            precision: match self.precision {
+                PrecisionChoice::Checked => Precision::Checked,
+                PrecisionChoice::Double => Precision::Double,
+                PrecisionChoice::DoubleDouble => Precision::DoubleDouble,
+            },
             max_events: self.max_events,
             record,
             ..WaveConfig::default()

@@ -58,9 +58,38 @@ pub fn summary(title: &str, o: &Outcome) -> String {
     let engine = match o.engine {
         impact_model::EngineKind::Wave => "wave (exact front tracing)",
         impact_model::EngineKind::Chain => "chain (Beeman mass-spring)",
+        impact_model::EngineKind::RigidBottom => {
+            "rigid-bottom (rigid mass under the elastic stack)"
+        }
     };
     let _ = writeln!(s, "  engine               {engine}");
     let _ = writeln!(s, "  restitution e        {:.12}", o.restitution);
+    if let Some(est) = &o.error_estimate {
+        let mut parts = vec![];
+        for (name, value) in [
+            ("dropped fronts", est.dropped),
+            ("merged fronts", est.merged),
+            ("rounding", est.rounding),
+            ("reduced model", est.reduced),
+        ] {
+            if value > 0.0 {
+                parts.push(format!("{name} {value:.1e}"));
+            }
+        }
+        if let Some(loss) = est.double_precision_loss {
+            parts.push(format!("double precision alone was off by {loss:.1e}"));
+        }
+        let _ = writeln!(
+            s,
+            "  error bound          |e - e_exact| <= {:.1e}  ({})",
+            est.bound,
+            if parts.is_empty() {
+                "exact".to_string()
+            } else {
+                parts.join(", ")
+            }
+        );
+    }
     if let Some(v) = o.restitution_from_velocity {
         let _ = writeln!(s, "  e from mean velocity {v:.12}");
     }

@@ -6,8 +6,9 @@ use crate::output::{summary, write_atomically};
 use anyhow::Context;
 use impact_chain::{ChainEngine, ChainLayout, ChainRecord};
 use impact_model::Scene;
+use impact_rigid::RigidError;
 use impact_study::Engine;
-use impact_wave::{Record, WaveEngine};
+use impact_wave::{Record, WaveError};
 use std::io::Write;
 
 /// Reads and validates a scene file; every failure is an input error.
@@ -48,9 +49,10 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
         .engine(rod.is_viscous(), a.masses, wave_record, chain_record)?;
     let (outcome, wall): (_, Vec<[f64; 4]>) = match engine {
         Engine::Wave(config) => {
-            let mut e = WaveEngine::new(&rod, config).map_err(|e| input(e.to_string()))?;
-            let o = e.run().context("the exact engine could not finish")?;
-            let wall = e
+            let solution = impact_wave::solve(&rod, &config).map_err(wave_failure)?;
+            let o = solution.outcome;
+            let wall = solution
+                .engine
                 .recording()
                 .wall
                 .iter()
@@ -69,6 +71,21 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
             let o = e.run().context("the chain could not finish")?;
             (o, e.recording().wall.clone())
         }
+        Engine::RigidBottom(config) => {
+            let o = impact_rigid::simulate(&rod, &config).map_err(|e| match e {
+                RigidError::Setting { .. } | RigidError::ViscousLayer { .. } => input(e.to_string()),
+                RigidError::Unfinished { .. } => anyhow::Error::new(e).context(
+                    "the rigid-bottom model could not finish (raise --horizon, or drop it for the exact escape rule)",
+                ),
+                e => anyhow::Error::new(e).context("the rigid-bottom model could not finish"),
+            })?;
+            if a.wall_trace.is_some() {
+                return Err(input(
+                    "--wall-trace: the rigid-bottom model records no wall trace (use --engine wave or chain)",
+                ));
+            }
+            (o, Vec::new())
+        }
     };
     if let Some(path) = &a.wall_trace {
         write_atomically(path, |w| {
@@ -86,4 +103,24 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
         write!(stdout, "{}", summary(&title, &outcome))?;
     }
     Ok(())
+}
+
+/// An exact-engine failure as the command line reports it: settings are
+/// input errors (exit 2); a run that could not finish (exit 1) names the
+/// flags that change the outcome.
+pub fn wave_failure(e: WaveError) -> anyhow::Error {
+    let hint = match &e {
+        WaveError::Setting { .. } | WaveError::ViscousLayer { .. } => {
+            return input(e.to_string());
+        }
+        WaveError::EventLimit { .. } => {
+            "raise --max-events, or let fronts merge with --resolution auto (the default) or merged"
+        }
+        WaveError::TimeLimit { .. } => "stop at a horizon with --horizon FACTOR",
+        WaveError::Unfinished { .. } => {
+            "raise --horizon, or drop it for the exact escape rule; no restitution is reported"
+        }
+        WaveError::EventInPast { .. } => "this is a bug: please report the scene",
+    };
+    anyhow::Error::new(e).context(format!("the exact engine could not finish ({hint})"))
 }

@@ -144,12 +144,15 @@ fn bad_sweeps_write_no_file() {
 
 #[test]
 fn a_run_that_cannot_finish_says_why_with_status_1() {
+    // exact fronts only, and too few events for a scene whose fronts multiply
     let out = impact(&[
         "run",
         "--x",
         "0.999",
         "--alpha",
         "0.0001",
+        "--resolution",
+        "exact",
         "--max-events",
         "100000",
     ]);
@@ -157,19 +160,76 @@ fn a_run_that_cannot_finish_says_why_with_status_1() {
     assert!(stdout(&out).is_empty());
     let err = stderr(&out);
     assert!(
-        err.contains("--merge-window") && err.contains("--max-events"),
+        err.contains("--resolution") && err.contains("--max-events"),
         "{err}"
     );
-    // and the remedy it names works
+    // and the remedy it names works: by default the run finishes, with a bound
+    let out = impact(&["run", "--x", "0.999", "--alpha", "0.0001", "--json"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&out)).unwrap();
+    let bound = v["error_bound"].as_f64().unwrap();
+    assert!(bound > 0.0 && bound < 1e-3, "{v}");
+}
+
+/// A horizon shorter than the contact is not a result: no restitution may
+/// come out of it that a script could mistake for a final one.
+#[test]
+fn a_horizon_reached_in_contact_is_not_a_result() {
+    // (a horizon reached in flight is the paper's own stop, and a result)
     let out = impact(&[
         "run",
         "--x",
-        "0.999",
+        "0.4",
         "--alpha",
-        "0.0001",
-        "--merge-window",
-        "1e-2",
+        "0.05",
+        "--horizon",
+        "0.5",
         "--json",
     ]);
-    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(stdout(&out).is_empty());
+    assert!(stderr(&out).contains("--horizon"), "{}", stderr(&out));
+}
+
+/// Derived quantities out of double precision, unknown materials and
+/// engines that cannot take a scene are input errors naming the field.
+#[test]
+fn impossible_scenes_and_engine_mismatches_are_input_errors() {
+    let dir = scratch("impossible");
+    let cases = [
+        (
+            r#"{"impact_speed": 1.0, "layers": [{"length": 1.0, "modulus": 1e300, "density": 1e-320}, {"length": 1.0, "modulus": 1.0, "density": 1.0}]}"#,
+            "layers[0]: wave speed",
+        ),
+        (
+            r#"{"impact_speed": 1.0, "layers": [{"length": 1.0, "material": "unobtainium"}]}"#,
+            "unknown material",
+        ),
+        (
+            r#"{"impact_speed": 1.0, "layers": [{"length": 1.0, "modulus": 1.0}]}"#,
+            "density",
+        ),
+    ];
+    for (i, (text, needle)) in cases.iter().enumerate() {
+        let path = dir.join(format!("scene{i}.json"));
+        std::fs::write(&path, text).unwrap();
+        let out = impact(&["run", path.to_str().unwrap()]);
+        assert_eq!(out.status.code(), Some(2), "{text}: {}", stderr(&out));
+        let err = stderr(&out);
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains(needle), "{text}: {err}");
+    }
+    let out = impact(&[
+        "run",
+        "--x",
+        "0.4",
+        "--alpha",
+        "0.05",
+        "--e1",
+        "0.9",
+        "--engine",
+        "rigid-bottom",
+    ]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(stderr(&out).contains("--engine rigid-bottom"));
 }

@@ -28,6 +28,8 @@ fn json_has_the_documented_keys_and_the_engine_numbers() {
         "transit_times",
         "elapsed_seconds",
         "events",
+        "error_bound",
+        "error_estimate",
     ] {
         assert!(v.get(key).is_some(), "missing {key}: {v}");
     }
@@ -143,4 +145,57 @@ fn paper_horizon_option() {
         .map(|t| t.as_f64().unwrap())
         .collect();
     assert!((v["end_time"].as_f64().unwrap() - 20.0 * t[0].max(t[1])).abs() < 1e-12);
+}
+
+/// A layer may name a material: the run equals the one with the table's
+/// numbers written out.
+#[test]
+fn named_materials_equal_their_numbers() {
+    let dir = scratch("materials");
+    let named = dir.join("named.json");
+    let numbers = dir.join("numbers.json");
+    std::fs::write(
+        &named,
+        r#"{"impact_speed": 1.0, "layers": [{"length": 0.01, "material": "steel"}, {"length": 0.02, "material": "pmma"}]}"#,
+    )
+    .unwrap();
+    let steel = impact_model::materials::find("steel").unwrap();
+    let pmma = impact_model::materials::find("pmma").unwrap();
+    std::fs::write(
+        &numbers,
+        format!(
+            r#"{{"impact_speed": 1.0, "layers": [{{"length": 0.01, "modulus": {}, "density": {}}}, {{"length": 0.02, "modulus": {}, "density": {}}}]}}"#,
+            steel.modulus, steel.density, pmma.modulus, pmma.density
+        ),
+    )
+    .unwrap();
+    let a = run_json(&["run", named.to_str().unwrap()]);
+    let b = run_json(&["run", numbers.to_str().unwrap()]);
+    assert_eq!(a["restitution"], b["restitution"]);
+    assert_eq!(a["contacts"], b["contacts"]);
+}
+
+/// The rigid-bottom model through the command line: the paper's lower
+/// region, where the stiff base leaves alone after one transit, gives
+/// Eq. 15's `e = 1 - 2x` in the limit; the exact engine approaches it.
+#[test]
+fn rigid_bottom_engine_gives_the_lower_region_limit() {
+    let v = run_json(&[
+        "run",
+        "--x",
+        "0.2",
+        "--alpha",
+        "0.0001",
+        "--engine",
+        "rigid-bottom",
+    ]);
+    assert_eq!(v["engine"], "rigid-bottom");
+    assert!(
+        (v["restitution"].as_f64().unwrap() - 0.6).abs() < 1e-9,
+        "{v}"
+    );
+    assert!(v["error_bound"].as_f64().unwrap() < 1e-9);
+    let exact = run_json(&["run", "--x", "0.2", "--alpha", "0.0001"]);
+    let diff = (exact["restitution"].as_f64().unwrap() - 0.6).abs();
+    assert!(diff < 1e-9, "{diff}");
 }

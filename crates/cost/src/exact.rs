@@ -2,7 +2,7 @@
 
 use crate::{CostError, CostSettings, timed};
 use impact_model::Rod;
-use impact_wave::{WaveConfig, simulate};
+use impact_wave::{Resolution, WaveConfig, WaveEngine};
 use serde::Serialize;
 
 /// One setting of the exact engine at one point.
@@ -20,13 +20,26 @@ pub struct ExactCost {
 
 /// Drop tolerances then merge windows, each against the untruncated run.
 pub fn exact_study(label: &str, rod: &Rod, s: &CostSettings) -> Result<Vec<ExactCost>, CostError> {
+    // one run per setting (no automatic choice, no error estimate): what
+    // each setting alone costs and gives
     let run = |drop: f64, merge: f64| {
         let config = WaveConfig {
             drop_tolerance: drop,
-            merge_window: merge,
+            resolution: if merge > 0.0 {
+                Resolution::Merged {
+                    per_transit: merge,
+                    per_longest: merge,
+                }
+            } else {
+                Resolution::Exact
+            },
             ..WaveConfig::default()
         };
-        timed(|| simulate(rod, &config).map_err(|e| CostError::Engine(e.to_string())))
+        timed(|| {
+            WaveEngine::new(rod, config.clone())
+                .and_then(|mut e| e.run())
+                .map_err(|e| CostError::Engine(e.to_string()))
+        })
     };
     let (_, reference) = run(0.0, 0.0)?;
     let mut settings: Vec<(f64, f64)> = std::iter::once((0.0, 0.0))

@@ -17,15 +17,27 @@ use crate::scene::LayerProps;
 
 /// Strain reflection and transmission coefficients of one interface.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct InterfaceCoefficients {
+pub struct InterfaceCoefficients<T = f64> {
     /// Up-going front from below, reflected down into the lower layer.
-    pub up_reflected: f64,
+    pub up_reflected: T,
     /// Up-going front from below, transmitted up into the upper layer.
-    pub up_transmitted: f64,
+    pub up_transmitted: T,
     /// Down-going front from above, reflected up into the upper layer.
-    pub down_reflected: f64,
+    pub down_reflected: T,
     /// Down-going front from above, transmitted down into the lower layer.
-    pub down_transmitted: f64,
+    pub down_transmitted: T,
+}
+
+impl<T> InterfaceCoefficients<T> {
+    /// The same coefficients in another number type.
+    pub fn map<U>(self, f: impl Fn(T) -> U) -> InterfaceCoefficients<U> {
+        InterfaceCoefficients {
+            up_reflected: f(self.up_reflected),
+            up_transmitted: f(self.up_transmitted),
+            down_reflected: f(self.down_reflected),
+            down_transmitted: f(self.down_transmitted),
+        }
+    }
 }
 
 impl InterfaceCoefficients {

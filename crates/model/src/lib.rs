@@ -16,13 +16,16 @@ pub mod bilayer;
 pub mod calibration;
 pub mod contact;
 pub mod interface;
+pub mod materials;
 pub mod outcome;
 pub mod rigid_bottom;
 pub mod scene;
 pub mod theory;
+pub mod units;
 
 pub use bilayer::Bilayer;
 pub use contact::ContactHistory;
 pub use interface::InterfaceCoefficients;
-pub use outcome::{EngineKind, Outcome, StopReason, Truncation};
+pub use outcome::{EngineKind, ErrorEstimate, Outcome, StopReason, Truncation};
 pub use scene::{Layer, LayerProps, Rod, Scene, SceneError};
+pub use units::Units;

@@ -10,6 +10,9 @@ pub enum EngineKind {
     Wave,
     /// The discrete Beeman mass-spring(-dashpot) chain.
     Chain,
+    /// The rigid-bottom limit: a rigid mass under an elastic stack.
+    #[serde(rename = "rigid-bottom")]
+    RigidBottom,
 }
 
 /// Why a run stopped.
@@ -37,6 +40,42 @@ pub struct Truncation {
     /// Fronts added into an earlier front of the same lane because they were
     /// born within the merge window of it.
     pub merged_fronts: u64,
+}
+
+/// How far the reported restitution may be from the model's exact value, and
+/// where that uncertainty comes from. Each part is an estimate the engine
+/// can defend: a first-order bound, a measured difference between two runs,
+/// or a rerun in higher precision; `method` says which.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct ErrorEstimate {
+    /// The sum of the parts below: `|e - e_exact| <= bound` is the claim.
+    pub bound: f64,
+    /// Fronts dropped under the drop tolerance: twice the impulse their
+    /// missing jumps could carry to the wall before the last separation.
+    pub dropped: f64,
+    /// Fronts merged to bound the work: twice the difference from a rerun
+    /// with half the merge windows.
+    pub merged: f64,
+    /// Rounding in the arithmetic of the reported value.
+    pub rounding: f64,
+    /// When the run was also done in double-double arithmetic: how far plain
+    /// double precision was from it (the reported value is then the
+    /// double-double one). Large values say double precision is not enough
+    /// for this scene.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub double_precision_loss: Option<f64>,
+    /// A reduced model (a layer treated as rigid, a chatter taken as rest).
+    pub reduced: f64,
+    /// How the parts were obtained, in words.
+    pub method: String,
+}
+
+impl ErrorEstimate {
+    /// Recomputes `bound` from the parts.
+    pub fn total(mut self) -> Self {
+        self.bound = self.dropped + self.merged + self.rounding + self.reduced;
+        self
+    }
 }
 
 /// Result of one impact, in the scene's units.
@@ -75,6 +114,13 @@ pub struct Outcome {
     /// What the exact engine dropped or merged (wave engine).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub truncation: Option<Truncation>,
+    /// How far `restitution` may be from the model's exact value (the
+    /// estimate's `bound`), when the engine can say.
+    #[serde(default)]
+    pub error_bound: Option<f64>,
+    /// The parts of that estimate.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub error_estimate: Option<ErrorEstimate>,
     /// Wall-clock time of the run.
     pub elapsed_seconds: f64,
 }
@@ -84,6 +130,14 @@ impl Outcome {
     /// `end`: `t_c`, its reduced form, `n1` (two-layer rods), the paper's
     /// filtered `N_b` (flights longer than `min(t_i)`) and the raw count. The
     /// engine adds its own work counters.
+    /// Attaches an error estimate (and its bound).
+    pub fn with_error(mut self, estimate: ErrorEstimate) -> Self {
+        let estimate = estimate.total();
+        self.error_bound = Some(estimate.bound);
+        self.error_estimate = Some(estimate);
+        self
+    }
+
     pub fn from_history(
         engine: EngineKind,
         restitution: f64,
@@ -115,6 +169,8 @@ impl Outcome {
             events: None,
             steps: None,
             truncation: None,
+            error_bound: None,
+            error_estimate: None,
             elapsed_seconds: 0.0,
         }
     }

@@ -2,6 +2,7 @@
 
 use impact_chain::ChainConfig;
 use impact_model::{Bilayer, Outcome, Scene};
+use impact_rigid::RigidConfig;
 use impact_wave::WaveConfig;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -11,6 +12,8 @@ use serde::{Deserialize, Serialize};
 pub enum Engine {
     Wave(WaveConfig),
     Chain(ChainConfig),
+    /// The rigid-bottom limit (a rigid mass under the elastic stack).
+    RigidBottom(RigidConfig),
 }
 
 /// Viscosity of the two layers of a canonical bilayer, as a relaxation time
@@ -44,6 +47,7 @@ impl Engine {
         match self {
             Engine::Wave(_) => "wave",
             Engine::Chain(_) => "chain",
+            Engine::RigidBottom(_) => "rigid-bottom",
         }
     }
 
@@ -52,6 +56,9 @@ impl Engine {
         match self {
             Engine::Wave(config) => impact_wave::simulate(rod, config).map_err(|e| e.to_string()),
             Engine::Chain(config) => impact_chain::simulate(rod, config).map_err(|e| e.to_string()),
+            Engine::RigidBottom(config) => {
+                impact_rigid::simulate(rod, config).map_err(|e| e.to_string())
+            }
         }
     }
 
@@ -84,6 +91,9 @@ pub struct Row {
     pub steps: Option<u64>,
     pub dropped_fronts: Option<u64>,
     pub merged_fronts: Option<u64>,
+    /// How far `restitution` may be from the model's exact value.
+    #[serde(default)]
+    pub error_bound: Option<f64>,
     /// Wall-clock time: the only column that differs between identical runs.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub elapsed_seconds: Option<f64>,
@@ -114,6 +124,7 @@ impl Row {
             steps: None,
             dropped_fronts: None,
             merged_fronts: None,
+            error_bound: None,
             elapsed_seconds: None,
             error: None,
         };
@@ -139,6 +150,7 @@ impl Row {
                 row.restitution_from_velocity = o.restitution_from_velocity;
                 row.dropped_fronts = o.truncation.map(|t| t.dropped_fronts);
                 row.merged_fronts = o.truncation.map(|t| t.merged_fronts);
+                row.error_bound = o.error_bound;
                 row.elapsed_seconds = timing.then_some(o.elapsed_seconds);
             }
             Err(e) => row.error = Some(e),
@@ -149,7 +161,7 @@ impl Row {
     /// CSV header matching [`Row::csv`].
     pub fn csv_header(timing: bool) -> String {
         let mut h = String::from(
-            "x,alpha,engine,restitution,restitution_from_velocity,contact_time,reduced_contact_time,n1,bounces,separations,end_time,stop_reason,events,steps,dropped_fronts,merged_fronts",
+            "x,alpha,engine,restitution,restitution_from_velocity,contact_time,reduced_contact_time,n1,bounces,separations,end_time,stop_reason,events,steps,dropped_fronts,merged_fronts,error_bound",
         );
         if timing {
             h.push_str(",elapsed_seconds");
@@ -181,6 +193,7 @@ impl Row {
             cell(&self.steps),
             cell(&self.dropped_fronts),
             cell(&self.merged_fronts),
+            cell(&self.error_bound),
         ];
         if timing {
             // failed rows have no time: an empty cell keeps the columns aligned

@@ -9,6 +9,8 @@ pub enum StopRule {
     /// horizon.
     Escape,
     /// Stop at `factor * max(t_i)`, as the paper does with `factor = 20`.
+    /// A run that reaches it while the rod still touches the wall has no
+    /// final restitution and is reported as unfinished.
     Horizon { factor: f64 },
 }
 
@@ -27,14 +29,63 @@ pub struct Record {
     pub fronts: bool,
 }
 
-/// Numerical settings of [`crate::WaveEngine`].
+/// How far fronts may be merged, which bounds the work of a run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Resolution {
+    /// Only fronts born at the same instant (within the simultaneity
+    /// window) merge: the exact solution. A scene whose fronts multiply
+    /// without bound then stops at `max_events` with an error.
+    Exact,
+    /// Fronts of a lane born within `min(per_transit * t_lane,
+    /// per_longest * max(t_i))` of the lane's newest front merge into it,
+    /// at the time of the larger of the two. A lane then holds at most
+    /// `1/per_transit + 1/per_longest` fronts. The merge error is of first
+    /// order in the windows.
+    Merged { per_transit: f64, per_longest: f64 },
+    /// Exact when the exact run takes at most `exact_events`; otherwise
+    /// merged, with windows chosen so that a run takes about
+    /// `budget_events`, and the merge error measured by a second run at
+    /// twice the windows (DESIGN: every scene finishes, with a stated and
+    /// tested error bound).
+    Auto {
+        exact_events: u64,
+        budget_events: u64,
+    },
+}
+
+impl Resolution {
+    /// The default: exact up to 2e5 events (a few milliseconds, more than
+    /// any point of the paper's grid needs), else about 4e6 events per run
+    /// (a tenth of a second), whatever the scene.
+    pub const AUTO: Resolution = Resolution::Auto {
+        exact_events: 200_000,
+        budget_events: 4_000_000,
+    };
+}
+
+/// The arithmetic of a run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Precision {
+    /// Double precision only; rounding is estimated a priori.
+    Double,
+    /// Double precision, rerun in double-double when the run's decisions
+    /// came close to grazing or were many (where rounding can be amplified):
+    /// the rerun's value is reported and the difference says how much
+    /// double precision alone would have lost.
+    Checked,
+    /// Double-double throughout (about 32 digits; 5 to 20 times slower).
+    DoubleDouble,
+}
+
+/// Numerical settings of [`crate::WaveEngine`] and [`crate::simulate`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct WaveConfig {
     pub stop: StopRule,
     /// A front is dropped when its velocity jump `c |d|` is below
     /// `drop_tolerance * v_b`. Default `1e-16`: measured to move `e` by
     /// `3e-13` against no dropping at all at the hard corner (x = 0.995,
-    /// alpha = 0.005; see the engine tests), while cutting its events tenfold.
+    /// alpha = 0.005), while cutting its events tenfold. Every drop is
+    /// accounted for in the error estimate.
     pub drop_tolerance: f64,
     /// Arrivals at one boundary closer than `simultaneity * min(t_i)` are one
     /// event, combined before the (nonlinear) contact decision. Default
@@ -42,18 +93,17 @@ pub struct WaveConfig {
     /// `1e-13 t_i` after `10^4` events) and far below any physical time, so
     /// commensurate transit times (`t2 = n t1`) are recognised as ties.
     pub simultaneity: f64,
-    /// Fronts born in one lane within `merge_window * min(t_i)` of each other
-    /// are merged into the earlier one (a time shift traded for fewer
-    /// fronts). Default 0: only simultaneous fronts merge, which is exact.
-    pub merge_window: f64,
     /// Contact decisions treat wall strains within
     /// `grazing_tolerance * v_b / c0` of zero as zero: the rod then stays at
     /// the wall with zero force. Default `1e-12`, above rounding.
     pub grazing_tolerance: f64,
-    /// Refuse to run past this many events (a run that cannot finish). The
-    /// paper's whole grid needs at most ~3e4 per point; `10^7` (about a second)
-    /// is reached only where fronts multiply without bound (`t2 / t1 >~ 10^4`),
-    /// and the error then says which setting to change.
+    /// How far fronts may merge. Default [`Resolution::AUTO`].
+    pub resolution: Resolution,
+    /// The arithmetic. Default [`Precision::Checked`].
+    pub precision: Precision,
+    /// Refuse to run past this many events in any one run (a run that
+    /// cannot finish). With automatic resolution no scene of up to eight
+    /// layers and transit-time ratios up to `10^6` comes near it.
     pub max_events: u64,
     /// Refuse to run past `max_time_factor * sum(t_i)`.
     pub max_time_factor: f64,
@@ -66,9 +116,10 @@ impl Default for WaveConfig {
             stop: StopRule::Escape,
             drop_tolerance: 1e-16,
             simultaneity: 1e-9,
-            merge_window: 0.0,
             grazing_tolerance: 1e-12,
-            max_events: 10_000_000,
+            resolution: Resolution::AUTO,
+            precision: Precision::Checked,
+            max_events: 200_000_000,
             max_time_factor: 1e4,
             record: Record::default(),
         }

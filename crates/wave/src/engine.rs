@@ -1,20 +1,30 @@
 //! The event loop of the exact engine.
+//!
+//! Everything here runs in internal units (see `impact_model::units`): the
+//! rod's length, mean density and stiffness and the impact speed are all of
+//! order one, whatever units the scene was written in. Times, strains and
+//! heights are converted back to the scene's units, exactly (the scales are
+//! powers of two), only where they leave the engine.
 
-use crate::config::{Record, StopRule, WaveConfig};
+use crate::config::{Record, Resolution, StopRule, WaveConfig};
 use crate::error::WaveError;
-use crate::lane::{Direction, Lane, Pushed};
+use crate::lane::{Direction, Lane, MergeRule, Pushed};
 use crate::queue::{EventInPast, EventKey, EventQueue};
+use crate::real::Real;
 use crate::record::{FrontRecord, Recording, WallSample};
 use crate::wall::{self, ContactState};
 use impact_model::{
-    ContactHistory, EngineKind, InterfaceCoefficients, LayerProps, Outcome, Rod, StopReason,
-    Truncation,
+    ContactHistory, EngineKind, InterfaceCoefficients, Outcome, Rod, StopReason, Truncation, Units,
 };
 use std::time::Instant;
 
-/// What one call of [`WaveEngine::step`] did.
+
+/// The merge rule of a lane, from its layer's transit time and wave speed.
+type LaneRule<R> = dyn Fn(f64, f64) -> MergeRule<R>;
+/// What one call of [`Tracer::step`] did.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Step {
+    /// When, in the scene's units.
     pub time: f64,
     pub kind: StepKind,
 }
@@ -30,6 +40,9 @@ pub enum StepKind {
     Wall { separated: bool },
     /// The free bottom landed on the wall.
     Reconnected,
+    /// Layer `layer`'s ringing was advanced in closed form over a quiet
+    /// window, standing for `events` boundary events.
+    Leap { layer: usize, events: u64 },
     /// The run is over.
     Stopped(StopReason),
 }
@@ -37,176 +50,315 @@ pub enum StepKind {
 /// Wall impulse bookkeeping: everything the wall does to the rod is the force
 /// `-E0 eps0` while in contact, so the centre of mass is known exactly.
 #[derive(Debug, Clone, Copy)]
-struct WallLedger {
+pub(crate) struct WallLedger<R> {
     /// Time of the last update.
-    at: f64,
+    pub(crate) at: R,
     /// `I = integral(eps0 dt)`.
-    impulse: f64,
+    pub(crate) impulse: R,
     /// `W = integral(I dt)`, for the centre-of-mass displacement.
-    moment: f64,
+    pub(crate) moment: R,
 }
 
-/// The exact engine for one rod. Build with [`WaveEngine::new`], then
-/// [`WaveEngine::run`] to the end or [`WaveEngine::step`] one event at a time.
-/// After each step, the fields are exactly those of the rod at
-/// [`WaveEngine::time`].
+/// Fronts whose velocity jump is at least this fraction of the impact speed
+/// stay where they were born in a merged lane...
+const KEEP_ABOVE: f64 = 1e-2;
+/// ...up to this many per lane: the few large fronts whose exact timing
+/// decides contacts (the impact front, a landing's front), while the many
+/// small ones they shed are deposited on the lattice.
+const KEEP_AT_MOST: usize = 8;
+
+/// One layer's constants in internal units.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct LayerConst<R> {
+    pub bottom: R,
+    pub top: R,
+    pub length: R,
+    pub modulus: R,
+    pub wave_speed: R,
+    pub impedance: R,
+    /// Fronts with `|jump|` below this are dropped.
+    pub(crate) drop_strain: R,
+}
+
+impl<R: Real> LayerConst<R> {
+    /// Fronts with `|jump|` below this are dropped.
+    pub(crate) fn drop_strain(&self) -> R {
+        self.drop_strain
+    }
+}
+
+/// How close the run's nonlinear decisions came to going the other way:
+/// where rounding can be amplified.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Decisions {
+    /// Contact decisions and landings taken.
+    pub count: u64,
+    /// Those within `1e-7` (relative to the impact's strain or speed) of
+    /// the other outcome.
+    pub near_grazing: u64,
+    /// The smallest relative margin met.
+    pub smallest_margin: f64,
+}
+
+/// Drops and merges, with what the error estimate needs of them.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Ledger {
+    pub(crate) truncation: Truncation,
+    /// `sum E |d|` over dropped fronts (force mismatch they leave), and
+    /// `sum E |d| s` with `s` their birth times.
+    pub(crate) dropped_force: f64,
+    pub(crate) dropped_force_time: f64,
+    /// Those sums at the last separation (only drops before the last
+    /// separation can change the wall impulse).
+    pub(crate) at_separation: (f64, f64),
+}
+
+/// The exact engine for one rod, in arithmetic `R` (`f64`, or `TwoFloat` to
+/// measure rounding). Build with [`Tracer::new`], then [`Tracer::run`] to the
+/// end or [`Tracer::step`] one event at a time. After each step, the fields
+/// are exactly those of the rod at [`Tracer::time`].
 #[derive(Debug, Clone)]
-pub struct WaveEngine {
-    pub(crate) layers: Vec<LayerProps>,
-    interfaces: Vec<InterfaceCoefficients>,
-    pub(crate) lanes: Vec<Lane>,
+pub struct Tracer<R: Real> {
+    pub(crate) layers: Vec<LayerConst<R>>,
+    pub(crate) interfaces: Vec<InterfaceCoefficients<R>>,
+    pub(crate) lanes: Vec<Lane<R>>,
+    /// For boundary `b`: the lane whose fronts arrive there from above
+    /// (the layer's down lane, or the folded top lane), if any.
+    pub(crate) from_above: Vec<Option<usize>>,
     /// Up-going component at the bottom of each layer, behind all its up
     /// fronts; with the lanes it gives the field anywhere (see `fields`).
-    pub(crate) up_base: Vec<f64>,
-    /// Down-going component at the top of each layer, behind its down fronts.
-    pub(crate) down_base: Vec<f64>,
-    queue: EventQueue,
-    pub(crate) contact: ContactState,
-    ledger: WallLedger,
-    history: ContactHistory,
-    impact_speed: f64,
-    mass: f64,
-    /// Distance the centre of mass must rise above its start before a free rod
-    /// can never touch the wall again (DESIGN.md §2).
-    escape_margin_per_energy: f64,
-    /// Drop threshold on |strain jump| in each layer.
-    drop_strain: Vec<f64>,
-    simultaneity: f64,
-    merge_window: f64,
-    grazing_strain: f64,
+    pub(crate) up_base: Vec<R>,
+    /// Down-going component at the top of each layer, behind its down fronts
+    /// (for a folded top lane: behind the fronts that have not yet reached the
+    /// top).
+    pub(crate) down_base: Vec<R>,
+    pub(crate) queue: EventQueue<R>,
+    pub(crate) contact: ContactState<R>,
+    pub(crate) ledger: WallLedger<R>,
+    pub(crate) history: ContactHistory,
+    pub(crate) impact_speed: R,
+    pub(crate) mass: R,
+    /// `sqrt(integral(m^2/E)) / M`: the escape bound per unit of
+    /// `sqrt(2 E_int)` (DESIGN.md §2).
+    escape_margin_per_energy: R,
+    pub(crate) simultaneity: R,
+    pub(crate) grazing_strain: R,
+    pub(crate) merged: bool,
     max_events: u64,
-    max_time: f64,
+    pub(crate) max_time: R,
     stop_rule: StopRule,
-    record: Record,
+    pub(crate) record: Record,
     recording: Recording,
-    truncation: Truncation,
-    events: u64,
+    pub(crate) drops: Ledger,
+    decisions: Decisions,
+    pub(crate) events: u64,
+    /// Reflections at a folded top whose fronts came back: events of the
+    /// unfolded engine, counted so that both report the same work.
+    folded_reflections: u64,
+    /// Boundary events advanced in closed form by leaps.
+    pub(crate) leaped: u64,
+    /// Per layer: no leap before this time (a wall decision is due first).
+    pub(crate) leap_after: Vec<R>,
+    /// Lattice deposits a leap gathers before placing them: (lane, at, d).
+    pub(crate) deposits: Vec<(usize, R, R)>,
+    /// Recent geometric sums `(q, n) -> (s0, s1, s2)`.
+    pub(crate) sums_memo: Vec<(R, u64, (R, R, R))>,
     next_id: u32,
-    now: f64,
+    pub(crate) now: R,
     stopped: Option<StopReason>,
+    pub(crate) units: Units,
     transit_times: Vec<f64>,
 }
 
-fn past(e: EventInPast) -> WaveError {
+/// The exact engine in double precision.
+pub type WaveEngine = Tracer<f64>;
+
+pub(crate) fn past(e: EventInPast) -> WaveError {
     WaveError::EventInPast {
         now: e.now,
         requested: e.requested,
     }
 }
 
-impl WaveEngine {
+impl<R: Real> Tracer<R> {
     /// Prepares a run: the impact happens at `t = 0`, launching the
-    /// compression front `-v_b / c0` from the wall.
+    /// compression front `-v_b / c0` from the wall. A tracer runs one
+    /// resolution: `Exact` and `Auto` both mean exact here (choosing between
+    /// runs is [`crate::simulate`]'s job), `Merged` merges.
     pub fn new(rod: &Rod, config: WaveConfig) -> Result<Self, WaveError> {
         if let Some(i) = rod.scene().layers.iter().position(|l| l.is_viscous()) {
             return Err(WaveError::ViscousLayer { layer: i });
         }
-        let nonneg = "a finite number >= 0";
-        for (field, value) in [
-            ("drop_tolerance", config.drop_tolerance),
-            ("simultaneity", config.simultaneity),
-            ("merge_window", config.merge_window),
-            ("grazing_tolerance", config.grazing_tolerance),
-        ] {
-            if !(value.is_finite() && value >= 0.0) {
-                return Err(WaveError::Setting {
-                    field,
-                    allowed: nonneg,
-                    value,
-                });
-            }
-        }
-        if let StopRule::Horizon { factor } = config.stop
-            && !(factor.is_finite() && factor > 0.0)
+        crate::error::check_settings(&config)?;
+        let scaled = rod.scaled_layers();
+        let units = *rod.units();
+        let of = R::of;
+        let vb = of(rod.scaled_impact_speed());
+        let t_min = scaled
+            .iter()
+            .map(|l| l.transit_time)
+            .fold(f64::INFINITY, f64::min);
+        let t_max = scaled.iter().map(|l| l.transit_time).fold(0.0, f64::max);
+        let simultaneity = of(config.simultaneity) * of(t_min);
+        let (rule, merged): (Box<LaneRule<R>>, bool) = match config.resolution
         {
-            return Err(WaveError::Setting {
-                field: "horizon",
-                allowed: "a finite number > 0",
-                value: factor,
-            });
-        }
-        let layers = rod.layers().to_vec();
-        let vb = rod.impact_speed();
-        let t_min = rod.min_transit_time();
-        let lanes = layers
+            Resolution::Exact | Resolution::Auto { .. } => (
+                Box::new(move |_, _| MergeRule::Simultaneous {
+                    window: simultaneity,
+                }),
+                false,
+            ),
+            Resolution::Merged {
+                per_transit,
+                per_longest,
+            } => (
+                Box::new(move |transit: f64, speed: f64| MergeRule::Lattice {
+                    spacing: simultaneity.max(of((per_transit * transit).min(per_longest * t_max))),
+                    keep_above: of(KEEP_ABOVE) * vb / of(speed),
+                    keep_at_most: KEEP_AT_MOST,
+                }),
+                true,
+            ),
+        };
+        let layers: Vec<LayerConst<R>> = scaled
+            .iter()
+            .map(|l| LayerConst {
+                bottom: of(l.bottom),
+                top: of(l.top),
+                length: of(l.length),
+                modulus: of(l.modulus),
+                wave_speed: of(l.wave_speed),
+                impedance: of(l.impedance),
+                drop_strain: of(config.drop_tolerance) * vb / of(l.wave_speed),
+            })
+            .collect();
+        let n = layers.len();
+        let fold = !config.record.fronts;
+        let mut lanes: Vec<Lane<R>> = scaled
             .iter()
             .enumerate()
             .flat_map(|(i, l)| {
-                [
-                    Lane::new(i, Direction::Up, l.transit_time),
-                    Lane::new(i, Direction::Down, l.transit_time),
-                ]
+                [Direction::Up, Direction::Down].map(|d| {
+                    Lane::new(i, d, of(l.transit_time), rule(l.transit_time, l.wave_speed))
+                })
             })
             .collect();
-        let interfaces = layers
+        let top_up = Lane::<R>::index(n - 1, Direction::Up);
+        lanes[top_up].folded = fold;
+        let from_above = (0..=n)
+            .map(|b| match b {
+                b if b == n => None,
+                b if fold && b == n - 1 => Some(top_up),
+                b => Some(Lane::<R>::index(b, Direction::Down)),
+            })
+            .collect();
+        let interfaces = scaled
             .windows(2)
-            .map(|w| InterfaceCoefficients::between(&w[0], &w[1]))
+            .map(|w| InterfaceCoefficients::between(&w[0], &w[1]).map(of))
             .collect();
         let c0 = layers[0].wave_speed;
-        let simultaneity = config.simultaneity * t_min;
+        let transit_sum: f64 = scaled.iter().map(|l| l.transit_time).sum();
+        let two = of(2.0);
         let mut engine = Self {
             interfaces,
-            lanes,
             // At rest relative to the rod's motion at -v_b: a = v_b/2c, b = -v_b/2c.
-            up_base: layers.iter().map(|l| vb / (2.0 * l.wave_speed)).collect(),
-            down_base: layers.iter().map(|l| -vb / (2.0 * l.wave_speed)).collect(),
-            drop_strain: layers
-                .iter()
-                .map(|l| config.drop_tolerance * vb / l.wave_speed)
-                .collect(),
-            queue: EventQueue::new(),
-            contact: ContactState::InContact { strain: 0.0 },
+            up_base: layers.iter().map(|l| vb / (two * l.wave_speed)).collect(),
+            down_base: layers.iter().map(|l| -vb / (two * l.wave_speed)).collect(),
+            queue: EventQueue::new(lanes.len()),
+            lanes,
+            from_above,
+            contact: ContactState::InContact { strain: R::zero() },
             ledger: WallLedger {
-                at: 0.0,
-                impulse: 0.0,
-                moment: 0.0,
+                at: R::zero(),
+                impulse: R::zero(),
+                moment: R::zero(),
             },
             history: ContactHistory::new(),
             impact_speed: vb,
-            mass: rod.mass(),
-            escape_margin_per_energy: rod.compliance_moment().sqrt() / rod.mass(),
+            mass: of(rod.scaled_mass()),
+            escape_margin_per_energy: of(rod.scaled_compliance_moment()).sqrt()
+                / of(rod.scaled_mass()),
             simultaneity,
-            merge_window: simultaneity.max(config.merge_window * t_min),
-            grazing_strain: config.grazing_tolerance * vb / c0,
+            grazing_strain: of(config.grazing_tolerance) * vb / c0,
+            merged,
             max_events: config.max_events,
-            max_time: config.max_time_factor * rod.transit_times().iter().sum::<f64>(),
+            max_time: of(config.max_time_factor * transit_sum),
             stop_rule: config.stop,
             record: config.record,
             recording: Recording::default(),
-            truncation: Truncation::default(),
+            drops: Ledger::default(),
+            decisions: Decisions {
+                smallest_margin: f64::INFINITY,
+                ..Decisions::default()
+            },
             events: 0,
+            folded_reflections: 0,
+            leaped: 0,
+            leap_after: vec![R::neg_infinity(); n],
+            deposits: Vec::new(),
+            sums_memo: Vec::new(),
             next_id: 0,
-            now: 0.0,
+            now: R::zero(),
             stopped: None,
+            units,
             transit_times: rod.transit_times(),
             layers,
         };
         if let StopRule::Horizon { factor } = config.stop {
-            let horizon = factor * rod.max_transit_time();
+            let horizon = of(factor) * of(t_max);
             engine
                 .queue
-                .schedule(EventKey::Horizon, horizon)
+                .schedule(EventKey::Horizon, horizon, R::zero())
                 .map_err(past)?;
         }
         // The impact: the bottom is stopped, v: -v_b -> 0, so d = -v_b / c0.
         let first = -vb / c0;
         engine.contact = ContactState::InContact { strain: first };
-        engine.spawn(0, Direction::Up, 0.0, first, &[])?;
+        engine.spawn(0, Direction::Up, R::zero(), first, &[])?;
         engine.record_wall();
         Ok(engine)
     }
 
-    /// Current time: that of the last processed event.
+    /// Current time, in the scene's units: that of the last processed event.
     pub fn time(&self) -> f64 {
-        self.now
+        self.now.to_f64() * self.units.time
     }
 
+    /// The contact state in the scene's units.
     pub fn contact_state(&self) -> ContactState {
+        let u = &self.units;
         self.contact
+            .to_f64(u.strain(), u.displacement(), u.amplitude, u.time)
     }
 
+    /// Boundary events so far (reflections at a folded top included).
     pub fn events(&self) -> u64 {
+        self.events + self.folded_reflections + self.pending_reflections() + self.leaped
+    }
+
+    /// Iterations of the event loop so far: the run's work.
+    pub fn steps(&self) -> u64 {
         self.events
+    }
+
+    /// Boundary events advanced in closed form (by leaps over quiet layers).
+    pub fn leaped_events(&self) -> u64 {
+        self.leaped
+    }
+
+    /// Fronts of a folded top lane that have reached the top but not come
+    /// back yet.
+    fn pending_reflections(&self) -> u64 {
+        self.lanes
+            .iter()
+            .filter(|l| l.folded)
+            .map(|l| {
+                l.fronts
+                    .iter()
+                    .take_while(|f| f.born + l.transit <= self.now)
+                    .count() as u64
+            })
+            .sum()
     }
 
     /// Why the run stopped, once it has.
@@ -220,17 +372,47 @@ impl WaveEngine {
     }
 
     pub fn truncation(&self) -> Truncation {
-        self.truncation
+        self.drops.truncation
     }
 
-    /// Centre-of-mass velocity, exact from the wall impulse:
-    /// `M dv/dt = -E0 eps0`.
-    pub fn centre_of_mass_velocity(&self) -> f64 {
+    /// How close the contact decisions came to grazing.
+    pub fn decisions(&self) -> Decisions {
+        self.decisions
+    }
+
+    /// Fronts alive now, over all lanes (the run's memory).
+    pub fn live_fronts(&self) -> usize {
+        self.lanes.iter().map(|l| l.fronts.len()).sum()
+    }
+
+    /// A first-order bound on how far dropped fronts moved `e`: each left a
+    /// force mismatch `E |d|` at its boundary from its birth on, whose
+    /// impulse until the last separation changes the wall impulse at most
+    /// twice over.
+    pub fn dropped_error_bound(&self) -> f64 {
+        let (force, force_time) = if self.history.in_contact() {
+            (self.drops.dropped_force, self.drops.dropped_force_time)
+        } else {
+            self.drops.at_separation
+        };
+        let tc = self.history.contact_time(self.time()) / self.units.time;
+        let impulse = (force * tc - force_time).max(0.0);
+        2.0 * impulse / (self.mass.to_f64() * self.impact_speed.to_f64())
+    }
+
+    /// Centre-of-mass velocity in internal units, exact from the wall
+    /// impulse: `M dv/dt = -E0 eps0`.
+    pub(crate) fn centre_of_mass_velocity(&self) -> R {
         let impulse = self.impulse_at(self.now);
         -self.impact_speed - self.layers[0].modulus / self.mass * impulse
     }
 
-    fn impulse_at(&self, t: f64) -> f64 {
+    /// The restitution so far.
+    pub fn restitution(&self) -> f64 {
+        (self.centre_of_mass_velocity() / self.impact_speed).to_f64()
+    }
+
+    fn impulse_at(&self, t: R) -> R {
         match self.contact {
             ContactState::InContact { strain } => {
                 self.ledger.impulse + strain * (t - self.ledger.at)
@@ -240,16 +422,17 @@ impl WaveEngine {
     }
 
     /// Centre-of-mass displacement since the impact.
-    fn centre_of_mass_displacement(&self) -> f64 {
+    fn centre_of_mass_displacement(&self) -> R {
         -self.impact_speed * self.now - self.layers[0].modulus / self.mass * self.ledger.moment
     }
 
     /// Brings the wall ledger (and a free bottom's height) up to time `t`.
-    fn advance_wall(&mut self, t: f64) {
+    pub(crate) fn advance_wall(&mut self, t: R) {
         let dt = t - self.ledger.at;
+        let half = R::of(0.5);
         match &mut self.contact {
             ContactState::InContact { strain } => {
-                self.ledger.moment += self.ledger.impulse * dt + 0.5 * *strain * dt * dt;
+                self.ledger.moment += self.ledger.impulse * dt + half * *strain * dt * dt;
                 self.ledger.impulse += *strain * dt;
             }
             ContactState::Free {
@@ -270,55 +453,73 @@ impl WaveEngine {
         &mut self,
         layer: usize,
         dir: Direction,
-        t: f64,
-        jump: f64,
+        t: R,
+        jump: R,
         parents: &[u32],
     ) -> Result<(), WaveError> {
-        if jump == 0.0 {
+        if jump == R::zero() {
             return Ok(());
         }
-        if jump.abs() < self.drop_strain[layer] {
-            self.truncation.dropped_fronts += 1;
-            self.truncation.dropped_velocity +=
-                jump.abs() * self.layers[layer].wave_speed / self.impact_speed;
+        let props = self.layers[layer];
+        if jump.abs() < props.drop_strain {
+            let d = self.drops.truncation;
+            self.drops.truncation = Truncation {
+                dropped_fronts: d.dropped_fronts + 1,
+                dropped_velocity: d.dropped_velocity
+                    + (jump.abs() * props.wave_speed / self.impact_speed).to_f64(),
+                ..d
+            };
+            let force = (props.modulus * jump.abs()).to_f64();
+            self.drops.dropped_force += force;
+            self.drops.dropped_force_time += force * t.to_f64();
             return Ok(());
         }
         match dir {
             Direction::Up => self.up_base[layer] += jump,
             Direction::Down => self.down_base[layer] += jump,
         }
-        let index = Lane::index(layer, dir);
+        let index = Lane::<R>::index(layer, dir);
+        let id = self.next_id;
         let lane = &mut self.lanes[index];
-        let newest_born = lane.fronts.back().map(|f| f.born);
-        match lane.push(t, jump, self.next_id, self.merge_window) {
+        match lane.push(t, jump, id) {
             Pushed::New { was_empty } => {
+                let arrival = lane.arrival_of(t);
                 if self.record.fronts {
+                    let u = &self.units;
                     self.recording.fronts.push(FrontRecord {
-                        id: self.next_id,
+                        id,
                         layer,
                         direction: dir,
-                        born: t,
-                        arrives: t + lane.transit,
-                        jump,
+                        born: t.to_f64() * u.time,
+                        arrives: arrival.to_f64() * u.time,
+                        jump: jump.to_f64() * u.strain(),
                         parents: parents.to_vec(),
                     });
                 }
                 self.next_id += 1;
-                if was_empty {
-                    let arrival = t + lane.transit;
+                if was_empty && let Some(head) = lane.head_arrival() {
                     self.queue
-                        .schedule(EventKey::Lane(index as u32), arrival)
+                        .schedule(EventKey::Lane(index as u32), head, self.now)
                         .map_err(past)?;
                 }
             }
-            Pushed::Merged { id } => {
-                if newest_born.is_some_and(|b| t - b > self.simultaneity) {
-                    self.truncation.merged_fronts += 1;
+            Pushed::Merged {
+                id,
+                moved_head,
+                beyond_simultaneity,
+            } => {
+                if beyond_simultaneity {
+                    self.drops.truncation.merged_fronts += 1;
+                }
+                if moved_head && let Some(arrival) = lane.head_arrival() {
+                    self.queue
+                        .schedule(EventKey::Lane(index as u32), arrival, self.now)
+                        .map_err(past)?;
                 }
                 if self.record.fronts
                     && let Some(rec) = self.recording.fronts.get_mut(id as usize)
                 {
-                    rec.jump += jump;
+                    rec.jump += jump.to_f64() * self.units.strain();
                     rec.parents.extend_from_slice(parents);
                 }
             }
@@ -326,64 +527,82 @@ impl WaveEngine {
         Ok(())
     }
 
-    /// Takes the head of lane `index` if it arrives by `deadline`.
-    fn take_head(&mut self, index: usize, deadline: f64) -> Result<Option<(f64, u32)>, WaveError> {
+    /// Takes the head of lane `index` if it arrives by `deadline`: its
+    /// delivered jump and id.
+    fn take_head(&mut self, index: usize, deadline: R) -> Result<Option<(R, u32)>, WaveError> {
         let lane = &mut self.lanes[index];
         match lane.head_arrival() {
             Some(t) if t <= deadline => {}
             _ => return Ok(None),
         }
-        let Some(front) = lane.fronts.pop_front() else {
+        let Some(front) = lane.pop() else {
             return Ok(None);
         };
+        let jump = lane.delivered(front.jump);
+        if lane.folded {
+            // the front reflected at the top on its way: that reflection is
+            // an event of the unfolded engine, and moves the top's base
+            self.folded_reflections += 1;
+            self.down_base[lane.layer] -= front.jump;
+        }
         match lane.head_arrival() {
             Some(next) => self
                 .queue
-                .schedule(EventKey::Lane(index as u32), next)
+                .schedule(EventKey::Lane(index as u32), next, self.now)
                 .map_err(past)?,
             None => self.queue.cancel(EventKey::Lane(index as u32)),
         }
-        Ok(Some((front.jump, front.id)))
+        Ok(Some((jump, front.id)))
     }
 
     /// Processes the next event. Arrivals at the same boundary within the
     /// simultaneity window are combined into one event first.
     pub fn step(&mut self) -> Result<Step, WaveError> {
+        let to_scene = |t: R, u: &Units| t.to_f64() * u.time;
         if let Some(reason) = self.stopped {
             return Ok(Step {
-                time: self.now,
+                time: self.time(),
                 kind: StepKind::Stopped(reason),
             });
         }
         if self.events >= self.max_events {
             return Err(WaveError::EventLimit {
-                events: self.events,
-                time: self.now,
+                events: self.events(),
+                time: self.time(),
             });
         }
         let Some((key, t)) = self.queue.peek() else {
             // Nothing left can happen (every front dropped): the rod is free
             // for good only if it moves away; otherwise this is a limit case.
-            return Err(WaveError::TimeLimit { time: self.now });
+            return Err(WaveError::TimeLimit { time: self.time() });
         };
         if t > self.max_time {
-            return Err(WaveError::TimeLimit { time: t });
+            return Err(WaveError::TimeLimit {
+                time: to_scene(t, &self.units),
+            });
         }
         self.events += 1;
-        self.queue.advance(t);
         self.now = t;
         let kind = match key {
             EventKey::Lane(index) => {
-                let boundary = self.lanes[index as usize].target();
-                self.boundary_event(boundary, t)?
+                let layer = self.lanes[index as usize].layer;
+                if self.merged
+                    && let Some(events) = self.leap(layer)?
+                {
+                    StepKind::Leap { layer, events }
+                } else {
+                    let boundary = self.lanes[index as usize].target();
+                    self.boundary_event(boundary, t)?
+                }
             }
             EventKey::Reconnection => {
                 self.queue.pop();
-                let wall_lane = Lane::index(0, Direction::Down);
-                if self.lanes[wall_lane]
-                    .head_arrival()
-                    .is_some_and(|a| a <= t + self.simultaneity)
-                {
+                let wall_lane = self.from_above[0];
+                if wall_lane.is_some_and(|i| {
+                    self.lanes[i]
+                        .head_arrival()
+                        .is_some_and(|a| a <= t + self.simultaneity)
+                }) {
                     // A front reaches the bottom as it lands: one event. It
                     // reflects off the still-free bottom first; if the bottom
                     // still moves down it lands at once (the landing is
@@ -398,7 +617,11 @@ impl WaveEngine {
             }
             EventKey::Escape => {
                 self.queue.pop();
-                self.finish(t, StopReason::Escaped)
+                if self.merged && !self.escape_confirmed()? {
+                    StepKind::Wall { separated: false }
+                } else {
+                    self.finish(t, StopReason::Escaped)
+                }
             }
             EventKey::Horizon => {
                 self.queue.pop();
@@ -410,32 +633,62 @@ impl WaveEngine {
                 self.finish(t, reason)
             }
         };
-        Ok(Step { time: t, kind })
+        Ok(Step {
+            time: to_scene(t, &self.units),
+            kind,
+        })
     }
 
-    fn finish(&mut self, t: f64, reason: StopReason) -> StepKind {
+    fn finish(&mut self, t: R, reason: StopReason) -> StepKind {
         self.advance_wall(t);
         self.stopped = Some(reason);
         StepKind::Stopped(reason)
     }
 
+    /// Counts decisions a leap took without coming near grazing.
+    pub(crate) fn note_decisions(&mut self, count: u64) {
+        self.decisions.count += count;
+    }
+
+    /// Spawns a front with no recorded parents (for leaps).
+    pub(crate) fn spawn_front(
+        &mut self,
+        layer: usize,
+        dir: Direction,
+        t: R,
+        jump: R,
+    ) -> Result<(), WaveError> {
+        self.spawn(layer, dir, t, jump, &[])
+    }
+
+    /// Notes how close a decision came to going the other way.
+    fn note_decision(&mut self, margin: R) {
+        let m = margin.abs().to_f64();
+        self.decisions.count += 1;
+        if m < 1e-7 {
+            self.decisions.near_grazing += 1;
+        }
+        self.decisions.smallest_margin = self.decisions.smallest_margin.min(m);
+    }
+
     /// All fronts reaching boundary `b` by `t + simultaneity`, as one event.
-    fn boundary_event(&mut self, b: usize, t: f64) -> Result<StepKind, WaveError> {
+    fn boundary_event(&mut self, b: usize, t: R) -> Result<StepKind, WaveError> {
         let deadline = t + self.simultaneity;
         let n = self.layers.len();
         let mut parents = [0u32; 2];
         let mut count = 0;
-        let mut from_below = 0.0;
-        let mut from_above = 0.0;
+        let mut from_below = R::zero();
+        let mut from_above = R::zero();
         if b > 0
-            && let Some((d, id)) = self.take_head(Lane::index(b - 1, Direction::Up), deadline)?
+            && let Some((d, id)) =
+                self.take_head(Lane::<R>::index(b - 1, Direction::Up), deadline)?
         {
             from_below = d;
             parents[count] = id;
             count += 1;
         }
-        if b < n
-            && let Some((d, id)) = self.take_head(Lane::index(b, Direction::Down), deadline)?
+        if let Some(lane) = self.from_above[b]
+            && let Some((d, id)) = self.take_head(lane, deadline)?
         {
             from_above = d;
             parents[count] = id;
@@ -445,10 +698,16 @@ impl WaveEngine {
         if b == 0 {
             self.advance_wall(t);
             let c0 = self.layers[0].wave_speed;
+            if let ContactState::InContact { strain } = self.contact {
+                let scale = self.impact_speed / c0;
+                self.note_decision((strain + R::of(2.0) * from_above) / scale);
+            }
             let r = wall::reflect(self.contact, from_above, c0, t, self.grazing_strain);
             self.contact = r.state;
             if r.separated {
-                self.history.separate(t);
+                self.history.separate(t.to_f64() * self.units.time);
+                self.drops.at_separation =
+                    (self.drops.dropped_force, self.drops.dropped_force_time);
                 self.schedule_escape(t)?;
             }
             self.schedule_landing()?;
@@ -473,23 +732,61 @@ impl WaveEngine {
     /// After a separation with the centre of mass moving up, schedules the
     /// time from which no reconnection is possible: the bottom satisfies
     /// `z0 >= w_cm - D`, `D = sqrt(integral(m^2/E)) sqrt(2 E_int) / M`.
-    fn schedule_escape(&mut self, t: f64) -> Result<(), WaveError> {
+    fn schedule_escape(&mut self, t: R) -> Result<(), WaveError> {
         let v = self.centre_of_mass_velocity();
-        if v <= 0.0 || self.stop_rule != StopRule::Escape {
+        if v <= R::zero() || self.stop_rule != StopRule::Escape {
             return Ok(());
         }
-        let internal = (0.5 * self.mass * (self.impact_speed.powi(2) - v * v)).max(0.0);
+        let of = R::of;
+        let internal = (of(0.5) * self.mass * (self.impact_speed.powi(2) - v * v)).max(R::zero());
         // 1e-9 relative margin: the dropped fronts may leave the true internal
         // energy a hair above the balance used here.
-        let margin = self.escape_margin_per_energy * (2.0 * internal).sqrt() * (1.0 + 1e-9)
-            + 1e-12 * self.impact_speed * self.transit_times.iter().sum::<f64>();
+        let transits: R = self
+            .layers
+            .iter()
+            .fold(R::zero(), |s, l| s + l.length / l.wave_speed);
+        let margin = self.escape_margin_per_energy * (of(2.0) * internal).sqrt() * of(1.0 + 1e-9)
+            + of(1e-12) * self.impact_speed * transits;
         let rise = margin - self.centre_of_mass_displacement();
-        let at = t + rise.max(0.0) / v;
-        self.queue.schedule(EventKey::Escape, at).map_err(past)
+        let at = t + rise.max(R::zero()) / v;
+        self.queue
+            .schedule(EventKey::Escape, at, self.now)
+            .map_err(past)
+    }
+
+    /// With merged fronts, energy and momentum are those of the merged
+    /// field, which may differ a little from the exact balance the escape
+    /// time was computed from. Checks the bound on the field itself (the
+    /// bottom's offset from the centre of mass can never exceed
+    /// `D = sqrt(integral(m^2/E)) sqrt(2 E_int) / M`) and reschedules when
+    /// it does not hold yet.
+    fn escape_confirmed(&mut self) -> Result<bool, WaveError> {
+        let t = self.now;
+        self.advance_wall(t);
+        let ContactState::Free { height: h, .. } = self.contact else {
+            return Ok(false);
+        };
+        let fields = self.field_state();
+        let m = self.mass;
+        let v = fields.momentum / m;
+        let internal = (fields.energy - R::of(0.5) * m * v * v).max(R::zero());
+        let d = self.escape_margin_per_energy * (R::of(2.0) * internal).sqrt() * R::of(1.0 + 1e-6);
+        // height of the centre of mass above the wall, minus the bound
+        let clearance = h + fields.bottom_below_centre - d;
+        if clearance > R::zero() && v > R::zero() {
+            return Ok(true);
+        }
+        if v > R::zero() {
+            let at = t + (-clearance).max(R::zero()) / v + self.simultaneity;
+            self.queue
+                .schedule(EventKey::Escape, at, self.now)
+                .map_err(past)?;
+        }
+        Ok(false)
     }
 
     /// Keeps the landing (reconnection) event in step with the free bottom.
-    fn schedule_landing(&mut self) -> Result<(), WaveError> {
+    pub(crate) fn schedule_landing(&mut self) -> Result<(), WaveError> {
         match self.contact {
             ContactState::Free {
                 height,
@@ -498,7 +795,7 @@ impl WaveEngine {
             } => match wall::landing_time(height, velocity, at) {
                 Some(land) => self
                     .queue
-                    .schedule(EventKey::Reconnection, land.max(self.now))
+                    .schedule(EventKey::Reconnection, land.max(self.now), self.now)
                     .map_err(past),
                 None => {
                     self.queue.cancel(EventKey::Reconnection);
@@ -512,32 +809,34 @@ impl WaveEngine {
         }
     }
 
-    fn reconnect(&mut self, t: f64) -> Result<(), WaveError> {
+    fn reconnect(&mut self, t: R) -> Result<(), WaveError> {
         self.advance_wall(t);
         let ContactState::Free { velocity, .. } = self.contact else {
             return Ok(());
         };
+        self.note_decision(velocity / self.impact_speed);
         let (jump, state) = wall::reconnect(velocity, self.layers[0].wave_speed);
         self.contact = state;
-        self.history.reconnect(t);
+        self.history.reconnect(t.to_f64() * self.units.time);
         self.queue.cancel(EventKey::Escape);
         self.spawn(0, Direction::Up, t, jump, &[])?;
         self.record_wall();
         Ok(())
     }
 
-    fn record_wall(&mut self) {
+    pub(crate) fn record_wall(&mut self) {
         if !self.record.wall {
             return;
         }
-        let (strain, height, velocity) = match self.contact {
+        let state = self.contact_state();
+        let (strain, height, velocity) = match state {
             ContactState::InContact { strain } => (strain, 0.0, 0.0),
             ContactState::Free {
                 height, velocity, ..
             } => (0.0, height, velocity),
         };
         self.recording.wall.push(WallSample {
-            time: self.now,
+            time: self.time(),
             strain,
             height,
             velocity,
@@ -559,14 +858,14 @@ impl WaveEngine {
     pub fn outcome(&self) -> Outcome {
         let mut o = Outcome::from_history(
             EngineKind::Wave,
-            self.centre_of_mass_velocity() / self.impact_speed,
+            self.restitution(),
             &self.history,
             &self.transit_times,
-            self.now,
+            self.time(),
             self.stopped.unwrap_or(StopReason::HorizonInContact),
         );
-        o.events = Some(self.events);
-        o.truncation = Some(self.truncation);
+        o.events = Some(self.events());
+        o.truncation = Some(self.drops.truncation);
         o
     }
 }

@@ -7,9 +7,13 @@
 //! (value behind minus ahead); likewise `b` from the top. Energy density is
 //! `E (a^2 + b^2)` (the cross terms cancel because `rho c^2 = E`), momentum
 //! density `rho c (b - a)`.
+//!
+//! A folded top lane holds up-going fronts and, once they have passed the
+//! top, their reflections (`-d`, going down); both are rebuilt from it.
 
-use crate::engine::WaveEngine;
+use crate::engine::Tracer;
 use crate::lane::{Direction, Lane};
+use crate::real::Real;
 
 /// Strain and velocity at one point.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -27,78 +31,163 @@ pub struct FieldTotals {
     pub momentum: f64,
 }
 
-impl WaveEngine {
-    /// Piecewise-constant profile of one component of layer `layer` at the
-    /// current time: `(distance from the lane's start, value)` breakpoints,
-    /// starting at 0 with the base value; each front moves the value on.
-    fn component(&self, layer: usize, dir: Direction) -> (f64, Vec<(f64, f64)>) {
-        let lane = &self.lanes[Lane::index(layer, dir)];
-        let c = self.layers[layer].wave_speed;
-        let mut value = match dir {
-            Direction::Up => self.up_base[layer],
-            Direction::Down => self.down_base[layer],
+/// Field integrals in internal units, for the escape check.
+pub(crate) struct FieldState<R> {
+    pub energy: R,
+    pub momentum: R,
+    /// `(1/M) integral(m(s) eps(s) ds)`: how far the centre of mass sits
+    /// above the bottom's displacement.
+    pub bottom_below_centre: R,
+}
+
+/// One component of one layer: its value at the lane's start and the
+/// fronts met going away from it, as `(distance from the start, jump)`,
+/// nearest first.
+struct Profile<R> {
+    start: R,
+    steps: Vec<(R, R)>,
+}
+
+impl<R: Real> Profile<R> {
+    /// `(from, to, value)` segments over `[0, length]`.
+    fn segments(&self, length: R) -> Vec<(R, R, R)> {
+        let mut out = Vec::with_capacity(self.steps.len() + 1);
+        let mut from = R::zero();
+        let mut value = self.start;
+        for &(at, jump) in &self.steps {
+            let at = at.min(length);
+            out.push((from, at, value));
+            from = at;
+            value -= jump;
+        }
+        out.push((from, length, value));
+        out
+    }
+
+    /// The value at distance `s` from the start (a front exactly at `s` is
+    /// not yet crossed).
+    fn at(&self, s: R) -> R {
+        let mut value = self.start;
+        for &(at, jump) in &self.steps {
+            if at < s {
+                value -= jump;
+            } else {
+                break;
+            }
+        }
+        value
+    }
+}
+
+impl<R: Real> Tracer<R> {
+    /// The up (`a`, from the layer's bottom) and down (`b`, from its top)
+    /// profiles of layer `i` now.
+    fn profiles(&self, i: usize) -> (Profile<R>, Profile<R>) {
+        let c = self.layers[i].wave_speed;
+        let now = self.now;
+        let up = &self.lanes[Lane::<R>::index(i, Direction::Up)];
+        let mut a = Profile {
+            start: self.up_base[i],
+            steps: Vec::new(),
         };
-        let mut steps = Vec::with_capacity(lane.fronts.len() + 1);
-        steps.push((0.0, value));
-        // newest fronts are nearest the lane's start
-        for f in lane.fronts.iter().rev() {
-            value -= f.jump;
-            steps.push((c * (self.time() - f.born), value));
-        }
-        (self.layers[layer].length, steps)
-    }
-
-    /// Integral of `g(value)` over a component profile.
-    fn integrate(length: f64, steps: &[(f64, f64)], g: impl Fn(f64) -> f64) -> f64 {
-        let mut sum = 0.0;
-        for (k, &(from, value)) in steps.iter().enumerate() {
-            let to = steps.get(k + 1).map_or(length, |s| s.0).min(length);
-            sum += g(value) * (to - from.min(length)).max(0.0);
-        }
-        sum
-    }
-
-    /// Energy and momentum of the rod now, from the fronts.
-    pub fn field_totals(&self) -> FieldTotals {
-        let mut energy = 0.0;
-        let mut momentum = 0.0;
-        for (i, l) in self.layers.iter().enumerate() {
-            let (len, up) = self.component(i, Direction::Up);
-            let (_, down) = self.component(i, Direction::Down);
-            energy += l.modulus
-                * (Self::integrate(len, &up, |a| a * a) + Self::integrate(len, &down, |b| b * b));
-            momentum += l.impedance
-                * (Self::integrate(len, &down, |b| b) - Self::integrate(len, &up, |a| a));
-        }
-        FieldTotals { energy, momentum }
-    }
-
-    /// Strain and velocity at height `y` of the undeformed rod, now. A front
-    /// sitting exactly at `y` is not counted: the sample is taken on the side
-    /// the front came from, so at a layer's end it is the state after the
-    /// event that just happened there.
-    pub fn field_at(&self, y: f64) -> FieldSample {
-        let last = self.layers.len() - 1;
-        let i = self.layers.iter().position(|l| y < l.top).unwrap_or(last);
-        let l = &self.layers[i];
-        // value of a component at distance `s` from its lane's start
-        let value_at = |dir: Direction, s: f64| {
-            let (_, steps) = self.component(i, dir);
-            let mut value = steps[0].1;
-            for &(from, v) in &steps[1..] {
-                if from < s {
-                    value = v;
+        let mut b = Profile {
+            start: self.down_base[i],
+            steps: Vec::new(),
+        };
+        if up.folded {
+            // fronts past the top are reflections going down
+            let mut reflected: Vec<(R, R)> = Vec::new();
+            for f in up.fronts.iter() {
+                let age = now - f.born;
+                if age >= up.transit {
+                    reflected.push((c * (age - up.transit), -f.jump));
+                    // the engine moves the top's base only when they return
+                    b.start -= f.jump;
                 } else {
-                    break;
+                    a.steps.push((c * age, f.jump));
                 }
             }
-            value
-        };
-        let a = value_at(Direction::Up, y - l.bottom);
-        let b = value_at(Direction::Down, l.top - y);
+            // the newest fronts are nearest the lane's start
+            a.steps.reverse();
+            reflected.reverse();
+            // the value at the top is that behind all reflections: undo them
+            // from the nearest to the top outward
+            b.steps = reflected;
+        } else {
+            for f in up.fronts.iter().rev() {
+                a.steps.push((c * (now - f.born), f.jump));
+            }
+            let down = &self.lanes[Lane::<R>::index(i, Direction::Down)];
+            for f in down.fronts.iter().rev() {
+                b.steps.push((c * (now - f.born), f.jump));
+            }
+        }
+        (a, b)
+    }
+
+    /// Energy, momentum and the centre of mass's offset above the bottom, in
+    /// internal units.
+    pub(crate) fn field_state(&self) -> FieldState<R> {
+        let mut energy = R::zero();
+        let mut momentum = R::zero();
+        let mut moment = R::zero();
+        let mut above = R::zero();
+        let half = R::of(0.5);
+        for i in (0..self.layers.len()).rev() {
+            let l = self.layers[i];
+            let rho = l.impedance / l.wave_speed;
+            let (a, b) = self.profiles(i);
+            // a is measured from the bottom, b from the top
+            for (from, to, v) in a.segments(l.length) {
+                energy += l.modulus * v * v * (to - from);
+                momentum -= l.impedance * v * (to - from);
+                // integral of m(s) over [bottom + from, bottom + to]
+                let m = |s: R| above * s + rho * (l.length * s - half * s * s);
+                moment += v * (m(to) - m(from));
+            }
+            for (from, to, v) in b.segments(l.length) {
+                energy += l.modulus * v * v * (to - from);
+                momentum += l.impedance * v * (to - from);
+                // distances from the top: s from the bottom is length - d
+                let m = |d: R| above * d + half * rho * d * d;
+                moment += v * (m(to) - m(from));
+            }
+            above += rho * l.length;
+        }
+        FieldState {
+            energy,
+            momentum,
+            bottom_below_centre: moment / self.mass,
+        }
+    }
+
+    /// Energy and momentum of the rod now, from the fronts, in the scene's
+    /// units.
+    pub fn field_totals(&self) -> FieldTotals {
+        let s = self.field_state();
+        let u = &self.units;
+        FieldTotals {
+            energy: s.energy.to_f64() * u.mass * u.amplitude * u.amplitude,
+            momentum: s.momentum.to_f64() * u.mass * u.amplitude,
+        }
+    }
+
+    /// Strain and velocity at height `y` (scene units) of the undeformed rod,
+    /// now. A front sitting exactly at `y` is not counted: the sample is taken
+    /// on the side the front came from, so at a layer's end it is the state
+    /// after the event that just happened there.
+    pub fn field_at(&self, y: f64) -> FieldSample {
+        let y = R::of(y / self.units.length);
+        let last = self.layers.len() - 1;
+        let i = self.layers.iter().position(|l| y < l.top).unwrap_or(last);
+        let l = self.layers[i];
+        let (up, down) = self.profiles(i);
+        let a = up.at(y - l.bottom);
+        let b = down.at(l.top - y);
+        let u = &self.units;
         FieldSample {
-            strain: a + b,
-            velocity: l.wave_speed * (b - a),
+            strain: (a + b).to_f64() * u.strain(),
+            velocity: (l.wave_speed * (b - a)).to_f64() * u.amplitude,
         }
     }
 }

@@ -3,7 +3,16 @@
 //! All fronts of a lane move at the layer's wave speed, so they reach the far
 //! boundary in the order they were born: a lane is a FIFO, and only its head
 //! needs a place in the event queue.
+//!
+//! The top layer's two lanes are folded into one when nobody records front
+//! paths: the free top reflects every front `d -> -d` and nothing else
+//! happens there, so a front born going up at the layer's bottom simply comes
+//! back to it, negated, after two transits. That removes every event at the
+//! top (a third of all events at the paper's hard corner) without changing a
+//! single operation of the arithmetic: the arrival time is still
+//! `(born + t) + t`, as when the reflection was an event of its own.
 
+use crate::real::Real;
 use serde::Serialize;
 use std::collections::VecDeque;
 
@@ -18,20 +27,49 @@ pub enum Direction {
 /// A straight front: born at one end of its layer at time `born`, it carries the
 /// strain jump `jump` (value behind minus value ahead).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Front {
-    pub born: f64,
-    pub jump: f64,
+pub struct Front<R> {
+    pub born: R,
+    pub jump: R,
     /// Index into the front records (meaningful only when fronts are recorded).
     pub id: u32,
+    /// A large front a lattice lane keeps where it was born.
+    pub kept: bool,
+}
+
+/// How fronts born close together in a lane are merged.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum MergeRule<R> {
+    /// Fronts born within `window` (the simultaneity window) of the newest
+    /// are one front: they started at the same instant.
+    Simultaneous { window: R },
+    /// Fronts are deposited on the lattice of birth times `k * spacing`,
+    /// each split between the two nearest points in the proportions that
+    /// keep the jump and its first moment `d t` exact: the lane's momentum
+    /// is kept, its energy can only decrease (a step shared by two nearby
+    /// steps carries less), and the lane holds at most `t / spacing + 2`
+    /// lattice fronts. Up to `keep_at_most` fronts with `|d| >= keep_above`
+    /// stay where they were born: the few large fronts whose exact timing
+    /// decides contacts.
+    Lattice {
+        spacing: R,
+        keep_above: R,
+        keep_at_most: usize,
+    },
 }
 
 /// Fronts of one layer and direction, oldest first.
 #[derive(Debug, Clone)]
-pub struct Lane {
+pub struct Lane<R> {
     pub layer: usize,
     pub direction: Direction,
-    pub transit: f64,
-    pub fronts: VecDeque<Front>,
+    pub transit: R,
+    /// True for the top layer's folded lane: fronts go up, reflect at the
+    /// free top and come back down to the layer's bottom, negated.
+    pub folded: bool,
+    pub rule: MergeRule<R>,
+    pub fronts: VecDeque<Front<R>>,
+    /// Kept (not deposited) fronts in a lattice lane.
+    pub kept: usize,
 }
 
 /// What happened to a pushed front.
@@ -39,17 +77,26 @@ pub struct Lane {
 pub enum Pushed {
     /// It became the lane's newest front (`was_empty`: and its head).
     New { was_empty: bool },
-    /// It was added into the newest front, born within the merge window.
-    Merged { id: u32 },
+    /// It was added into the newest front. `moved_head`: that front was the
+    /// head and its birth time changed; `beyond_simultaneity`: a real merge,
+    /// not a tie.
+    Merged {
+        id: u32,
+        moved_head: bool,
+        beyond_simultaneity: bool,
+    },
 }
 
-impl Lane {
-    pub fn new(layer: usize, direction: Direction, transit: f64) -> Self {
+impl<R: Real> Lane<R> {
+    pub fn new(layer: usize, direction: Direction, transit: R, rule: MergeRule<R>) -> Self {
         Self {
             layer,
             direction,
             transit,
+            folded: false,
+            rule,
             fronts: VecDeque::new(),
+            kept: 0,
         }
     }
 
@@ -61,28 +108,178 @@ impl Lane {
     /// The boundary a front of this lane arrives at (boundary `b` sits at the
     /// bottom of layer `b`; boundary 0 is the wall).
     pub fn target(&self) -> usize {
-        match self.direction {
-            Direction::Up => self.layer + 1,
-            Direction::Down => self.layer,
+        match (self.direction, self.folded) {
+            (Direction::Up, false) => self.layer + 1,
+            _ => self.layer,
         }
+    }
+
+    /// When a front born at `born` reaches this lane's end (for a folded
+    /// lane: comes back down to the layer's bottom).
+    #[inline]
+    pub fn arrival_of(&self, born: R) -> R {
+        let far = born + self.transit;
+        if self.folded { far + self.transit } else { far }
     }
 
     /// Arrival time of the head front.
-    pub fn head_arrival(&self) -> Option<f64> {
-        self.fronts.front().map(|f| f.born + self.transit)
+    #[inline]
+    pub fn head_arrival(&self) -> Option<R> {
+        self.fronts.front().map(|f| self.arrival_of(f.born))
     }
 
-    /// Adds a front born at `born` (not earlier than any front of the lane).
-    pub fn push(&mut self, born: f64, jump: f64, id: u32, merge_window: f64) -> Pushed {
-        if let Some(last) = self.fronts.back_mut()
-            && born - last.born <= merge_window
-        {
-            last.jump += jump;
-            return Pushed::Merged { id: last.id };
+    /// The jump a front delivers when it arrives (a folded lane's fronts
+    /// come back reflected by the free top).
+    #[inline]
+    pub fn delivered(&self, jump: R) -> R {
+        if self.folded { -jump } else { jump }
+    }
+
+    /// Takes the head front.
+    pub fn pop(&mut self) -> Option<Front<R>> {
+        let f = self.fronts.pop_front()?;
+        if f.kept {
+            self.kept -= 1;
         }
-        let was_empty = self.fronts.is_empty();
-        self.fronts.push_back(Front { born, jump, id });
-        Pushed::New { was_empty }
+        Some(f)
+    }
+
+    /// Adds a front born at `born` (not earlier than any front born before
+    /// it, but lattice fronts may sit later).
+    pub fn push(&mut self, born: R, jump: R, id: u32) -> Pushed {
+        match self.rule {
+            MergeRule::Simultaneous { window } => {
+                let len = self.fronts.len();
+                if let Some(last) = self.fronts.back_mut()
+                    && born - last.born <= window
+                {
+                    last.jump += jump;
+                    return Pushed::Merged {
+                        id: last.id,
+                        moved_head: false,
+                        beyond_simultaneity: false,
+                    };
+                }
+                self.fronts.push_back(Front {
+                    born,
+                    jump,
+                    id,
+                    kept: false,
+                });
+                Pushed::New {
+                    was_empty: len == 0,
+                }
+            }
+            MergeRule::Lattice {
+                spacing,
+                keep_above,
+                keep_at_most,
+            } => {
+                let head_before = self.fronts.front().map(|f| f.born);
+                let was_empty = self.fronts.is_empty();
+                let inserted = if jump.abs() >= keep_above && self.kept < keep_at_most {
+                    self.kept += 1;
+                    self.add_at(born, jump, id, true)
+                } else {
+                    self.deposit(born, jump, id, spacing)
+                };
+                match (was_empty, inserted) {
+                    (true, _) => Pushed::New { was_empty: true },
+                    (false, true) if self.fronts.front().map(|f| f.born) == head_before => {
+                        Pushed::New { was_empty: false }
+                    }
+                    _ => Pushed::Merged {
+                        id,
+                        moved_head: self.fronts.front().map(|f| f.born) != head_before,
+                        beyond_simultaneity: true,
+                    },
+                }
+            }
+        }
+    }
+
+    /// Deposits a jump on the lattice (see [`MergeRule::Lattice`]); true if
+    /// a front was inserted.
+    fn deposit(&mut self, born: R, jump: R, id: u32, spacing: R) -> bool {
+        let k = (born / spacing).floor();
+        let (lo, hi) = (k * spacing, (k + R::one()) * spacing);
+        let f = (born - lo) / spacing;
+        let mut inserted = false;
+        for (at, d) in [(lo, jump * (R::one() - f)), (hi, jump * f)] {
+            if d != R::zero() {
+                inserted |= self.add_at(at, d, id, false);
+            }
+        }
+        inserted
+    }
+
+    /// Adds lattice deposits `(at, d)` in one pass over the lane: the
+    /// deposits of a leap's trains spread over many cells, and placing them
+    /// one by one would walk the lane once each.
+    pub fn place_all(&mut self, mut deposits: Vec<(R, R)>) {
+        if deposits.is_empty() {
+            return;
+        }
+        deposits.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap_or(std::cmp::Ordering::Equal));
+        let old = std::mem::take(&mut self.fronts);
+        let mut merged = VecDeque::with_capacity(old.len() + deposits.len());
+        let mut news = deposits.into_iter().peekable();
+        let deposit = |merged: &mut VecDeque<Front<R>>, at: R, d: R| match merged.back_mut() {
+            Some(last) if last.born == at && !last.kept => last.jump += d,
+            _ => merged.push_back(Front {
+                born: at,
+                jump: d,
+                id: 0,
+                kept: false,
+            }),
+        };
+        for f in old {
+            while let Some(&(at, d)) = news.peek() {
+                if at > f.born {
+                    break;
+                }
+                if at == f.born && !f.kept {
+                    break;
+                }
+                deposit(&mut merged, at, d);
+                news.next();
+            }
+            match merged.back_mut() {
+                Some(last) if last.born == f.born && !last.kept && !f.kept => last.jump += f.jump,
+                _ => merged.push_back(f),
+            }
+        }
+        for (at, d) in news {
+            deposit(&mut merged, at, d);
+        }
+        self.fronts = merged;
+    }
+
+    /// Adds `d` to the lattice front born at `at`, or inserts a front there
+    /// keeping birth order (a kept front is always inserted); true if one
+    /// was inserted. The place is among the newest fronts: births only move
+    /// forward, and lattice points by at most one spacing.
+    fn add_at(&mut self, at: R, d: R, id: u32, kept: bool) -> bool {
+        let n = self.fronts.len();
+        let mut i = n;
+        while i > 0 && self.fronts[i - 1].born > at {
+            i -= 1;
+        }
+
+        if !kept && i > 0 && self.fronts[i - 1].born == at && !self.fronts[i - 1].kept {
+            self.fronts[i - 1].jump += d;
+            return false;
+        }
+        self.fronts.insert(
+            i,
+            Front {
+                born: at,
+                jump: d,
+                id,
+                kept,
+            },
+        );
+        true
     }
 }
 
@@ -92,22 +289,61 @@ mod tests {
 
     #[test]
     fn fronts_born_together_merge() {
-        let mut lane = Lane::new(0, Direction::Up, 2.0);
-        assert_eq!(
-            lane.push(1.0, 0.5, 0, 1e-9),
-            Pushed::New { was_empty: true }
+        let mut lane = Lane::new(
+            0,
+            Direction::Up,
+            2.0,
+            MergeRule::Simultaneous { window: 1e-9 },
         );
-        assert_eq!(
-            lane.push(1.0 + 1e-12, 0.25, 1, 1e-9),
-            Pushed::Merged { id: 0 }
-        );
-        assert_eq!(
-            lane.push(1.5, 1.0, 2, 1e-9),
-            Pushed::New { was_empty: false }
-        );
+        assert_eq!(lane.push(1.0, 0.5, 0), Pushed::New { was_empty: true });
+        assert!(matches!(
+            lane.push(1.0 + 1e-12, 0.25, 1),
+            Pushed::Merged { id: 0, .. }
+        ));
+        assert_eq!(lane.push(1.5, 1.0, 2), Pushed::New { was_empty: false });
         assert_eq!(lane.fronts.len(), 2);
         assert_eq!(lane.fronts[0].jump, 0.75);
         assert_eq!(lane.head_arrival(), Some(3.0));
         assert_eq!(lane.target(), 1);
+    }
+
+    #[test]
+    fn lattice_deposits_keep_the_jump_and_its_moment() {
+        let rule = MergeRule::Lattice {
+            spacing: 0.25,
+            keep_above: 1.0,
+            keep_at_most: 1,
+        };
+        let mut lane = Lane::new(1, Direction::Down, 2.0, rule);
+        lane.push(1.1, 0.5, 0);
+        lane.push(1.2, -0.25, 1);
+        // a large front is kept where it was born
+        lane.push(1.3, 2.0, 2);
+        // the next large one is deposited: one kept front at most
+        lane.push(1.35, 2.0, 3);
+        let births: Vec<f64> = lane.fronts.iter().map(|f| f.born).collect();
+        assert_eq!(births, vec![1.0, 1.25, 1.3, 1.5]);
+        let total: f64 = lane.fronts.iter().map(|f| f.jump).sum();
+        let moment: f64 = lane.fronts.iter().map(|f| f.jump * f.born).sum();
+        assert!((total - 4.25).abs() < 1e-15);
+        assert!((moment - (0.5 * 1.1 - 0.25 * 1.2 + 2.0 * 1.3 + 2.0 * 1.35)).abs() < 1e-14);
+        assert_eq!(lane.kept, 1);
+        while lane.pop().is_some() {}
+        assert_eq!(lane.kept, 0);
+    }
+
+    #[test]
+    fn a_folded_lane_returns_negated_after_two_transits() {
+        let mut lane = Lane::new(
+            2,
+            Direction::Up,
+            0.75,
+            MergeRule::Simultaneous { window: 0.0 },
+        );
+        lane.folded = true;
+        lane.push(1.0, 0.5, 0);
+        assert_eq!(lane.head_arrival(), Some((1.0 + 0.75) + 0.75));
+        assert_eq!(lane.delivered(0.5), -0.5);
+        assert_eq!(lane.target(), 2);
     }
 }

@@ -6,6 +6,11 @@
 //! advances from one boundary event to the next, exactly: no time step, no
 //! mesh. Restitution comes from the exact wall impulse (paper Eq. 6).
 //!
+//! [`simulate`] finishes every valid scene: exactly when the fronts stay
+//! few, otherwise with fronts merged under an event budget and the merge
+//! error measured by a second run; either way the outcome carries an error
+//! estimate (see [`solve`](crate::solve())).
+//!
 //! Architecture invariant: this crate knows nothing about output formats,
 //! plotting or the command line.
 
@@ -13,23 +18,21 @@ mod config;
 mod engine;
 mod error;
 mod fields;
+mod geometric;
 mod lane;
+mod leap;
 pub mod queue;
+mod real;
 mod record;
+mod solve;
 mod wall;
 
-pub use config::{Record, StopRule, WaveConfig};
-pub use engine::{Step, StepKind, WaveEngine};
+pub use config::{Precision, Record, Resolution, StopRule, WaveConfig};
+pub use engine::{Decisions, Step, StepKind, Tracer, WaveEngine};
 pub use error::WaveError;
 pub use fields::{FieldSample, FieldTotals};
 pub use lane::Direction;
+pub use real::Real;
 pub use record::{FrontRecord, Recording, WallSample};
+pub use solve::{Solution, simulate, solve};
 pub use wall::ContactState;
-
-use impact_model::{Outcome, Rod};
-
-/// Runs one impact to the end with the given settings.
-pub fn simulate(rod: &Rod, config: &WaveConfig) -> Result<Outcome, WaveError> {
-    let mut engine = WaveEngine::new(rod, config.clone())?;
-    engine.run()
-}

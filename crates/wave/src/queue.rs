@@ -2,12 +2,17 @@
 //! the physics.
 //!
 //! Each key is scheduled at most once (rescheduling moves it). Equal times come
-//! out in the order of the keys (`EventKey`'s declaration order, then lane
-//! index), so simultaneous events are processed in a fixed, documented order:
-//! reconnection first, then lane heads by lane index, then the escape check,
-//! then the horizon. Scheduling before the current time is refused.
+//! out in the order of the keys, so simultaneous events are processed in a
+//! fixed, documented order: reconnection first, then lane heads by lane index,
+//! then the escape check, then the horizon. Scheduling before the current
+//! time (the engine's clock, passed in: there is one clock) is refused.
+//!
+//! Keys are small dense integers, so the queue's index map hashes them with
+//! the identity (`nohash-hasher`) instead of SipHash: at most `2L + 3` keys
+//! ever exist, and hashing was a third of the cost of an event.
 
-use ordered_float::OrderedFloat;
+use crate::real::Real;
+use nohash_hasher::BuildNoHashHasher;
 use priority_queue::PriorityQueue;
 use std::cmp::Reverse;
 
@@ -31,62 +36,86 @@ pub struct EventInPast {
     pub requested: f64,
 }
 
-/// Time-ordered keyed queue; ties broken by key.
-#[derive(Debug, Clone, Default)]
-pub struct EventQueue {
-    heap: PriorityQueue<EventKey, Reverse<(OrderedFloat<f64>, EventKey)>>,
-    now: f64,
+/// Lane-indexed heap: keys are small dense integers, so they need no
+/// hashing beyond themselves.
+type Heap<R> = PriorityQueue<u32, Reverse<(<R as Real>::Key, u32)>, BuildNoHashHasher<u32>>;
+
+/// Time-ordered keyed queue for a rod with `lanes` lanes; ties broken by key.
+#[derive(Debug, Clone)]
+pub struct EventQueue<R: Real> {
+    heap: Heap<R>,
+    lanes: u32,
 }
 
-impl EventQueue {
-    pub fn new() -> Self {
-        Self::default()
+impl<R: Real> EventQueue<R> {
+    pub fn new(lanes: usize) -> Self {
+        Self {
+            heap: PriorityQueue::with_capacity_and_hasher(lanes + 3, Default::default()),
+            lanes: lanes as u32,
+        }
     }
 
-    /// The time of the last event taken with [`EventQueue::advance`].
-    pub fn now(&self) -> f64 {
-        self.now
+    /// The dense code of a key; codes sort in the documented tie order.
+    #[inline]
+    fn code(&self, key: EventKey) -> u32 {
+        match key {
+            EventKey::Reconnection => 0,
+            EventKey::Lane(i) => 1 + i,
+            EventKey::Escape => 1 + self.lanes,
+            EventKey::Horizon => 2 + self.lanes,
+        }
     }
 
-    /// Schedules `key` at `time`, replacing any earlier schedule of it.
-    pub fn schedule(&mut self, key: EventKey, time: f64) -> Result<(), EventInPast> {
-        if time < self.now || time.is_nan() {
+    #[inline]
+    fn key(&self, code: u32) -> EventKey {
+        match code {
+            0 => EventKey::Reconnection,
+            c if c <= self.lanes => EventKey::Lane(c - 1),
+            c if c == 1 + self.lanes => EventKey::Escape,
+            _ => EventKey::Horizon,
+        }
+    }
+
+    /// Schedules `key` at `time`, replacing any earlier schedule of it;
+    /// refused if `time` is before `now`.
+    #[inline]
+    pub fn schedule(&mut self, key: EventKey, time: R, now: R) -> Result<(), EventInPast> {
+        if time < now || time.is_nan() {
             return Err(EventInPast {
-                now: self.now,
-                requested: time,
+                now: now.to_f64(),
+                requested: time.to_f64(),
             });
         }
-        self.heap.push(key, Reverse((OrderedFloat(time), key)));
+        let code = self.code(key);
+        self.heap.push(code, Reverse((time.key(), code)));
         Ok(())
     }
 
     /// Removes `key` if scheduled.
+    #[inline]
     pub fn cancel(&mut self, key: EventKey) {
-        self.heap.remove(&key);
+        let code = self.code(key);
+        self.heap.remove(&code);
     }
 
     /// The earliest event, without removing it.
-    pub fn peek(&self) -> Option<(EventKey, f64)> {
-        self.heap.peek().map(|(k, p)| (*k, (p.0).0.0))
+    #[inline]
+    pub fn peek(&self) -> Option<(EventKey, R)> {
+        self.heap
+            .peek()
+            .map(|(c, p)| (self.key(*c), R::from_key((p.0).0)))
     }
 
     /// Time at which `key` is scheduled, if it is.
-    pub fn time_of(&self, key: EventKey) -> Option<f64> {
-        self.heap.get_priority(&key).map(|p| (p.0).0.0)
+    pub fn time_of(&self, key: EventKey) -> Option<R> {
+        let code = self.code(key);
+        self.heap.get_priority(&code).map(|p| R::from_key((p.0).0))
     }
 
-    /// Removes and returns the earliest event, moving the clock to its time.
-    pub fn pop(&mut self) -> Option<(EventKey, f64)> {
-        let (key, p) = self.heap.pop()?;
-        let time = (p.0).0.0;
-        self.now = time;
-        Some((key, time))
-    }
-
-    /// Moves the clock to `time` (an event taken out of band, e.g. a lane head
-    /// popped together with a simultaneous one).
-    pub fn advance(&mut self, time: f64) {
-        self.now = self.now.max(time);
+    /// Removes and returns the earliest event.
+    pub fn pop(&mut self) -> Option<(EventKey, R)> {
+        let (code, p) = self.heap.pop()?;
+        Some((self.key(code), R::from_key((p.0).0)))
     }
 
     pub fn len(&self) -> usize {
@@ -101,6 +130,7 @@ impl EventQueue {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use ordered_float::OrderedFloat;
     use proptest::prelude::*;
     use std::collections::{BTreeMap, HashMap};
 
@@ -136,7 +166,7 @@ mod tests {
             0 => EventKey::Reconnection,
             6 => EventKey::Escape,
             7 => EventKey::Horizon,
-            n => EventKey::Lane(u32::from(n)),
+            n => EventKey::Lane(u32::from(n) - 1),
         }
     }
 
@@ -145,16 +175,21 @@ mod tests {
         /// Random schedule / cancel / pop sequences give the same pops as the model.
         #[test]
         fn matches_a_sorted_map(ops in proptest::collection::vec((0u8..3, 0u8..8, 0u16..50), 1..400)) {
-            let mut q = EventQueue::new();
+            let mut q = EventQueue::<f64>::new(5);
             let mut m = Model::default();
+            let mut now = 0.0;
             for (op, k, dt) in ops {
                 let k = key(k);
                 // coarse times make many exact ties
-                let t = q.now() + f64::from(dt) * 0.25;
+                let t = now + f64::from(dt) * 0.25;
                 match op {
-                    0 => { q.schedule(k, t).unwrap(); m.schedule(k, t); }
+                    0 => { q.schedule(k, t, now).unwrap(); m.schedule(k, t); }
                     1 => { q.cancel(k); m.cancel(k); }
-                    _ => prop_assert_eq!(q.pop(), m.pop()),
+                    _ => {
+                        let popped = q.pop();
+                        prop_assert_eq!(popped, m.pop());
+                        if let Some((_, t)) = popped { now = t; }
+                    }
                 }
                 prop_assert_eq!(q.len(), m.by_key.len());
             }
@@ -167,7 +202,7 @@ mod tests {
 
     #[test]
     fn ties_follow_the_documented_order() {
-        let mut q = EventQueue::new();
+        let mut q = EventQueue::<f64>::new(4);
         for k in [
             EventKey::Horizon,
             EventKey::Lane(3),
@@ -175,7 +210,7 @@ mod tests {
             EventKey::Lane(1),
             EventKey::Reconnection,
         ] {
-            q.schedule(k, 1.0).unwrap();
+            q.schedule(k, 1.0, 0.0).unwrap();
         }
         let order: Vec<_> = std::iter::from_fn(|| q.pop().map(|e| e.0)).collect();
         assert_eq!(
@@ -192,16 +227,14 @@ mod tests {
 
     #[test]
     fn the_past_is_refused() {
-        let mut q = EventQueue::new();
-        q.schedule(EventKey::Lane(0), 2.0).unwrap();
-        q.pop();
+        let mut q = EventQueue::<f64>::new(1);
         assert_eq!(
-            q.schedule(EventKey::Lane(0), 1.0),
+            q.schedule(EventKey::Lane(0), 1.0, 2.0),
             Err(EventInPast {
                 now: 2.0,
                 requested: 1.0
             })
         );
-        assert!(q.schedule(EventKey::Lane(0), f64::NAN).is_err());
+        assert!(q.schedule(EventKey::Lane(0), f64::NAN, 0.0).is_err());
     }
 }

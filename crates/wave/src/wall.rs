@@ -5,23 +5,52 @@
 //! All rules take strain jumps of fronts in the bottom layer, wave speed `c0`
 //! (DESIGN.md §2).
 
+use crate::real::Real;
+
 /// State of the rod's bottom.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum ContactState {
+pub enum ContactState<R = f64> {
     /// Touching the wall with wall strain `strain` (<= 0: compression).
-    InContact { strain: f64 },
+    InContact { strain: R },
     /// Free: the bottom is at `height` above the wall at time `at`, moving with
     /// `velocity` (positive upward).
-    Free { height: f64, velocity: f64, at: f64 },
+    Free { height: R, velocity: R, at: R },
+}
+
+impl<R: Real> ContactState<R> {
+    /// The same state in double precision (and scaled by `strain`,
+    /// `displacement`, `speed` and `time` units).
+    pub fn to_f64(
+        self,
+        strain_unit: f64,
+        displacement: f64,
+        speed: f64,
+        time: f64,
+    ) -> ContactState {
+        match self {
+            ContactState::InContact { strain } => ContactState::InContact {
+                strain: strain.to_f64() * strain_unit,
+            },
+            ContactState::Free {
+                height,
+                velocity,
+                at,
+            } => ContactState::Free {
+                height: height.to_f64() * displacement,
+                velocity: velocity.to_f64() * speed,
+                at: at.to_f64() * time,
+            },
+        }
+    }
 }
 
 /// Result of a front group of total jump `d` reaching the wall.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct WallReflection {
+pub struct WallReflection<R = f64> {
     /// Jump of the reflected (up-going) front.
-    pub reflected: f64,
+    pub reflected: R,
     /// New state of the bottom.
-    pub state: ContactState,
+    pub state: ContactState<R>,
     /// True when the rod left the wall at this event.
     pub separated: bool,
 }
@@ -34,15 +63,23 @@ pub struct WallReflection {
 /// `-strain - d`, and the bottom leaves at `c0 (strain + 2d) > 0`. Within
 /// `grazing` of zero the rod stays at the wall with zero force. Free, the
 /// bottom reflects `d -> -d` and its velocity changes by `2 c0 d`.
-pub fn reflect(state: ContactState, d: f64, c0: f64, t: f64, grazing: f64) -> WallReflection {
+pub fn reflect<R: Real>(
+    state: ContactState<R>,
+    d: R,
+    c0: R,
+    t: R,
+    grazing: R,
+) -> WallReflection<R> {
+    let zero = R::zero();
+    let two = R::of(2.0);
     match state {
         ContactState::InContact { strain } => {
-            let rigid = strain + 2.0 * d;
+            let rigid = strain + two * d;
             if rigid > grazing {
                 WallReflection {
                     reflected: -strain - d,
                     state: ContactState::Free {
-                        height: 0.0,
+                        height: zero,
                         velocity: c0 * rigid,
                         at: t,
                     },
@@ -51,7 +88,7 @@ pub fn reflect(state: ContactState, d: f64, c0: f64, t: f64, grazing: f64) -> Wa
             } else if rigid >= -grazing {
                 WallReflection {
                     reflected: -strain - d,
-                    state: ContactState::InContact { strain: 0.0 },
+                    state: ContactState::InContact { strain: zero },
                     separated: false,
                 }
             } else {
@@ -68,7 +105,7 @@ pub fn reflect(state: ContactState, d: f64, c0: f64, t: f64, grazing: f64) -> Wa
             reflected: -d,
             state: ContactState::Free {
                 height,
-                velocity: velocity + 2.0 * c0 * d,
+                velocity: velocity + two * c0 * d,
                 at: t,
             },
             separated: false,
@@ -79,14 +116,14 @@ pub fn reflect(state: ContactState, d: f64, c0: f64, t: f64, grazing: f64) -> Wa
 /// The free bottom reaches the wall moving down at `velocity < 0`: the wall
 /// stops it, launching an up-going compression front `velocity / c0`, which is
 /// also the new wall strain.
-pub fn reconnect(velocity: f64, c0: f64) -> (f64, ContactState) {
+pub fn reconnect<R: Real>(velocity: R, c0: R) -> (R, ContactState<R>) {
     let jump = velocity / c0;
     (jump, ContactState::InContact { strain: jump })
 }
 
 /// When a free bottom at `height`, moving at `velocity`, reaches the wall.
-pub fn landing_time(height: f64, velocity: f64, at: f64) -> Option<f64> {
-    (velocity < 0.0).then(|| at + height.max(0.0) / -velocity)
+pub fn landing_time<R: Real>(height: R, velocity: R, at: R) -> Option<R> {
+    (velocity < R::zero()).then(|| at + height.max(R::zero()) / -velocity)
 }
 
 #[cfg(test)]

@@ -4,7 +4,7 @@
 mod common;
 use common::*;
 use impact_model::{Bilayer, theory};
-use impact_wave::{WaveConfig, WaveError, simulate};
+use impact_wave::{Resolution, WaveConfig, WaveError, simulate};
 
 #[test]
 fn extreme_contrasts_and_thin_layers_give_valid_numbers() {
@@ -20,28 +20,25 @@ fn extreme_contrasts_and_thin_layers_give_valid_numbers() {
 }
 
 #[test]
-fn the_stiffest_bottom_under_the_thickest_top_needs_a_merge_window() {
+fn the_stiffest_bottom_under_the_thickest_top_finishes_with_a_bound() {
     // x = 0.999, alpha = 1e-4: t2/t1 ~ 1e5 and fronts multiply without bound.
     let rod = rod(0.999, 1e-4);
-    let limited = WaveConfig {
+    let exact = WaveConfig {
+        resolution: Resolution::Exact,
         max_events: 200_000,
         ..WaveConfig::default()
     };
-    let err = simulate(&rod, &limited).unwrap_err();
+    let err = simulate(&rod, &exact).unwrap_err();
     assert!(matches!(err, WaveError::EventLimit { .. }));
     let msg = err.to_string();
-    assert!(
-        msg.contains("--merge-window") && msg.contains("chain"),
-        "{msg}"
-    );
-    // With a merge window it finishes, and says how much it merged.
-    let merged = WaveConfig {
-        merge_window: 1e-2,
-        ..WaveConfig::default()
-    };
-    let o = simulate(&rod, &merged).unwrap();
+    assert!(msg.contains("fronts multiply"), "{msg}");
+    assert!(!msg.contains("--"), "a library names no flag: {msg}");
+    // By default it finishes, says it merged and bounds the merge error.
+    let o = simulate(&rod, &WaveConfig::default()).unwrap();
     assert_valid(&o);
     assert!(o.truncation.unwrap().merged_fronts > 0);
+    let bound = o.error_bound.unwrap();
+    assert!(bound > 0.0 && bound < 1e-3, "{o:?}");
     // e -> x for alpha -> 0 at large x (Appendix C)
     assert!((o.restitution - 0.999).abs() < 1e-3, "{o:?}");
 }
