@@ -78,6 +78,14 @@ pub struct WaveArgs {
     /// Events a merged run may take under --resolution auto (the windows are chosen from it)
     #[arg(long, value_name = "N", default_value_t = 4_000_000)]
     pub event_budget: u64,
+    /// Under --resolution auto, refine merged runs until the error bound on e is at most DE (or the budget is spent)
+    #[arg(
+        long,
+        value_name = "DE",
+        default_value_t = 1e-5,
+        allow_negative_numbers = true
+    )]
+    pub target: f64,
     /// Arithmetic: checked (double, repeated in double-double when rounding may matter), double, double-double
     #[arg(long, value_enum, default_value_t = PrecisionChoice::Checked)]
     pub precision: PrecisionChoice,
@@ -283,15 +291,26 @@ impl WaveArgs {
                 ));
             }
             (ResolutionChoice::Exact, None) => Resolution::Exact,
-            (ResolutionChoice::Auto, None) => Resolution::Auto {
-                exact_events: 200_000,
-                budget_events: self.event_budget,
-            },
+            (ResolutionChoice::Auto, None) => {
+                if !(self.target.is_finite() && self.target > 0.0) {
+                    return Err(input(format!(
+                        "--target must be a finite number > 0 (got {})",
+                        self.target
+                    )));
+                }
+                Resolution::Auto {
+                    exact_events: 200_000,
+                    budget_events: self.event_budget,
+                    target: self.target,
+                }
+            }
             (_, window) => {
                 let w = window.unwrap_or(1e-2);
-                if !(w.is_finite() && w > 0.0 && w <= 1.0) {
+                // the error is measured at twice the window, which may be at
+                // most half a transit
+                if !(w.is_finite() && w > 0.0 && w <= 0.25) {
                     return Err(input(format!(
-                        "--merge-window must be a number in (0, 1] (got {w})"
+                        "--merge-window must be a number in (0, 0.25] (got {w})"
                     )));
                 }
                 Resolution::Merged {

@@ -43,23 +43,27 @@ pub enum Resolution {
     /// order in the windows.
     Merged { per_transit: f64, per_longest: f64 },
     /// Exact when the exact run takes at most `exact_events`; otherwise
-    /// merged, with windows chosen so that a run takes about
-    /// `budget_events`, and the merge error measured by a second run at
-    /// twice the windows (DESIGN: every scene finishes, with a stated and
+    /// merged, the lattice refined by halves until the measured error bound
+    /// is at most `target` (in `e`) or the work reaches about
+    /// `budget_events` (DESIGN: every scene finishes, with a stated and
     /// tested error bound).
     Auto {
         exact_events: u64,
         budget_events: u64,
+        target: f64,
     },
 }
 
 impl Resolution {
     /// The default: exact up to 2e5 events (a few milliseconds, more than
-    /// any point of the paper's grid needs), else about 4e6 events per run
-    /// (a tenth of a second), whatever the scene.
+    /// any point of the paper's grid needs); else merged until the bound is
+    /// `1e-5` in `e` (a hundred times below the paper's own chain at
+    /// `N = 10^4`, and below any measured restitution's precision) or about
+    /// 4e6 events (a tenth of a second) are spent, whatever the scene.
     pub const AUTO: Resolution = Resolution::Auto {
         exact_events: 200_000,
         budget_events: 4_000_000,
+        target: 1e-5,
     };
 }
 

@@ -18,7 +18,6 @@ use impact_model::{
 };
 use std::time::Instant;
 
-
 /// The merge rule of a lane, from its layer's transit time and wave speed.
 type LaneRule<R> = dyn Fn(f64, f64) -> MergeRule<R>;
 /// What one call of [`Tracer::step`] did.
@@ -200,8 +199,7 @@ impl<R: Real> Tracer<R> {
             .fold(f64::INFINITY, f64::min);
         let t_max = scaled.iter().map(|l| l.transit_time).fold(0.0, f64::max);
         let simultaneity = of(config.simultaneity) * of(t_min);
-        let (rule, merged): (Box<LaneRule<R>>, bool) = match config.resolution
-        {
+        let (rule, merged): (Box<LaneRule<R>>, bool) = match config.resolution {
             Resolution::Exact | Resolution::Auto { .. } => (
                 Box::new(move |_, _| MergeRule::Simultaneous {
                     window: simultaneity,

@@ -53,6 +53,9 @@ pub(crate) fn check_settings(config: &WaveConfig) -> Result<(), WaveError> {
     if let StopRule::Horizon { factor } = config.stop {
         checks.push(("horizon", factor, positive, false));
     }
+    if let Resolution::Auto { target, .. } = config.resolution {
+        checks.push(("target", target, positive, false));
+    }
     if let Resolution::Merged {
         per_transit,
         per_longest,
@@ -65,6 +68,13 @@ pub(crate) fn check_settings(config: &WaveConfig) -> Result<(), WaveError> {
             nonneg,
             true,
         ));
+        if per_transit > crate::solve::COARSEST {
+            return Err(WaveError::Setting {
+                field: "merge window per transit",
+                allowed: "at most 0.5 (a coarser lattice could deposit a front that arrives before it was born)",
+                value: per_transit,
+            });
+        }
     }
     for (field, value, allowed, zero_ok) in checks {
         let ok = value.is_finite() && (value > 0.0 || (zero_ok && value == 0.0));

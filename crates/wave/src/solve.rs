@@ -79,12 +79,13 @@ pub fn solve(rod: &Rod, config: &WaveConfig) -> Result<Solution, WaveError> {
             per_transit,
             per_longest,
         } => {
-            let l = ladder(rod, config, per_transit, per_longest, 0)?;
+            let l = ladder(rod, config, per_transit, per_longest, 0, 0.0)?;
             (l.0, Some(l.1))
         }
         Resolution::Auto {
             exact_events,
             budget_events,
+            target,
         } => {
             let exact = WaveConfig {
                 resolution: Resolution::Exact,
@@ -97,7 +98,7 @@ pub fn solve(rod: &Rod, config: &WaveConfig) -> Result<Solution, WaveError> {
                     parts.push(format!(
                         "the exact run needs more than {exact_events} events"
                     ));
-                    let l = ladder(rod, config, LANE_WINDOW, SLOW_WINDOW, budget_events)?;
+                    let l = ladder(rod, config, LANE_WINDOW, SLOW_WINDOW, budget_events, target)?;
                     (l.0, Some(l.1))
                 }
                 Err(e) => return Err(e),
@@ -204,14 +205,15 @@ struct MergeCheck {
 /// Merged runs from spacings `(p, l)` down by halves: each level set
 /// against the one twice as coarse and against a perturbed twin, while the
 /// estimate keeps falling (by at least half) and the next level fits the
-/// budget of event-loop steps (0: one level only). The finest level is
-/// reported.
+/// budget of event-loop steps (0: one level only) and the bound is above
+/// `target`. The finest level is reported.
 fn ladder(
     rod: &Rod,
     config: &WaveConfig,
     p: f64,
     l: f64,
     budget: u64,
+    target: f64,
 ) -> Result<(WaveEngine, MergeCheck), WaveError> {
     let at = |p: f64, l: f64| WaveConfig {
         resolution: Resolution::Merged {
@@ -233,7 +235,9 @@ fn ladder(
     let mut first = None;
     if budget > 0 {
         let cap = (budget / 4).max(1);
-        while p < 1.0 {
+        // the level and its coarser check both stay within the coarsest
+        // lattice a lane allows
+        while 2.0 * p <= COARSEST {
             let capped = WaveConfig {
                 max_events: cap.min(config.max_events),
                 ..at(p, l)
@@ -246,28 +250,54 @@ fn ladder(
                 }
                 Err(WaveError::EventLimit { .. }) => {
                     used += cap;
-                    p *= 4.0;
-                    l *= 4.0;
+                    if 2.0 * p >= COARSEST {
+                        break;
+                    }
+                    // four times coarser, or as coarse as allowed
+                    let grow = (4.0f64).min(COARSEST / (2.0 * p));
+                    p *= grow;
+                    l *= grow;
                 }
                 Err(e) => return Err(e),
             }
         }
     }
-    let mut coarser = run::<f64>(rod, at(2.0 * p, 2.0 * l))?;
+    // the runs of a level are independent: the coarser check (first level
+    // only), the level itself and its perturbed twin run side by side
+    let (coarser_first, (fine_first, twin_first)) = rayon::join(
+        || run::<f64>(rod, at(2.0 * p, 2.0 * l)),
+        || {
+            rayon::join(
+                || match first.take() {
+                    Some(e) => Ok((e, 0)),
+                    None => run::<f64>(rod, at(p, l)).map(|e| {
+                        let steps = e.steps();
+                        (e, steps)
+                    }),
+                },
+                || run::<f64>(&nudged, at(p, l)),
+            )
+        },
+    );
+    let mut coarser = coarser_first?;
     used += coarser.steps();
+    let mut pending = Some((fine_first?, twin_first?));
     let mut level = 0;
     let mut last: Option<(WaveEngine, MergeCheck)> = None;
     loop {
-        let fine = match first.take() {
-            Some(e) => e,
+        let ((fine, fine_steps), twin) = match pending.take() {
+            Some(runs) => runs,
             None => {
-                let e = run::<f64>(rod, at(p, l))?;
-                used += e.steps();
-                e
+                let (fine, twin) = rayon::join(
+                    || run::<f64>(rod, at(p, l)),
+                    || run::<f64>(&nudged, at(p, l)),
+                );
+                let fine = fine?;
+                let steps = fine.steps();
+                ((fine, steps), twin?)
             }
         };
-        let twin = run::<f64>(&nudged, at(p, l))?;
-        used += twin.steps();
+        used += fine_steps + twin.steps();
         let e = fine.restitution();
         let doubled = (e - coarser.restitution()).abs();
         let perturbed = (e - twin.restitution()).abs();
@@ -299,7 +329,7 @@ fn ladder(
             return Ok((fine, check));
         }
         let next_cost = 3 * (fine.steps() + twin.steps());
-        let done = budget == 0 || bound <= TARGET || used + next_cost > budget || p <= FINEST;
+        let done = budget == 0 || bound <= target || used + next_cost > budget || p <= FINEST;
         if done {
             return Ok((fine, check));
         }
@@ -311,11 +341,13 @@ fn ladder(
     }
 }
 
-/// A merged run's estimate small enough to stop refining at.
-const TARGET: f64 = 1e-6;
-
 /// The finest lattice a merged ladder goes down to (fraction of a transit).
 const FINEST: f64 = 1e-4;
+
+/// The coarsest lattice a lane may have (fraction of its transit,
+/// [`crate::engine`] refuses more): a front deposited on the lattice point
+/// before its birth must still arrive after it was born.
+pub(crate) const COARSEST: f64 = 0.5;
 
 /// An outcome that is final, or the reason it is not.
 fn finished<R: Real>(outcome: Outcome, engine: &Tracer<R>) -> Result<Outcome, WaveError> {
