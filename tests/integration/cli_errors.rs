@@ -199,7 +199,7 @@ fn impossible_scenes_and_engine_mismatches_are_input_errors() {
     let cases = [
         (
             r#"{"impact_speed": 1.0, "layers": [{"length": 1.0, "modulus": 1e300, "density": 1e-320}, {"length": 1.0, "modulus": 1.0, "density": 1.0}]}"#,
-            "layers[0]: wave speed",
+            "layers[0].density must be at least 2.2e-308",
         ),
         (
             r#"{"impact_speed": 1.0, "layers": [{"length": 1.0, "material": "unobtainium"}]}"#,

@@ -90,7 +90,8 @@ impl Units {
         let sum: f64 = moduli.iter().map(|e| e / power_of_two(e0)).sum();
         let mut modulus = e0 + nearest_power_of_two_exponent(sum);
         if (modulus - density).rem_euclid(2) == 1 {
-            modulus += 1;
+            // toward zero: a modulus near the largest double keeps a scale
+            modulus += if modulus > 0 { -1 } else { 1 };
         }
         Self::from_exponents(Exponents {
             length,
@@ -102,7 +103,14 @@ impl Units {
 
     fn from_exponents(k: Exponents) -> Self {
         let speed = (k.modulus - k.density) / 2;
-        let clamp = |e: i32| power_of_two(e.clamp(-1074, 1023));
+        // a scale beyond double precision becomes infinite or zero, so that
+        // every quantity in scene units that needs it fails validation
+        // instead of being silently saturated
+        let clamp = |e: i32| match e {
+            ..-1074 => 0.0,
+            1024.. => f64::INFINITY,
+            _ => power_of_two(e),
+        };
         Self {
             length: clamp(k.length),
             density: clamp(k.density),

@@ -509,6 +509,12 @@ impl<R: Real> Tracer<R> {
         if !k.is_finite() || k < 0.0 {
             return from.max(if a.abs() >= thr { 1 } else { 0 });
         }
+        // the first integer above k, unless k is so near an integer that
+        // the logarithms' rounding could decide: then count with powers
+        // (the common case needs none; they were half of a leap's time)
+        if (k - k.round()).abs() > 1e-9 * k.max(1.0) {
+            return (k.floor() as u64 + 1).max(from);
+        }
         let mut k = k.floor().max(0.0) as u64;
         // the first k with |a| |q|^k < thr
         while k > 0 && a.abs() * pow(aq, k - 1) < thr {

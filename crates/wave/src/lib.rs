@@ -32,7 +32,7 @@ pub use engine::{Decisions, Step, StepKind, Tracer, WaveEngine};
 pub use error::WaveError;
 pub use fields::{FieldSample, FieldTotals};
 pub use lane::Direction;
-pub use real::Real;
+pub use real::{DoubleDouble, Real};
 pub use record::{FrontRecord, Recording, WallSample};
 pub use solve::{Solution, simulate, solve};
 pub use wall::ContactState;

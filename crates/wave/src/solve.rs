@@ -9,14 +9,15 @@
 //!   exact and energy can only decrease), which bounds every lane's
 //!   population and so the work and the memory; quiet fast layers leap
 //!   their ringing in closed form. The merge error is measured, not
-//!   assumed: each level of lattice spacings is set against the level twice
-//!   as coarse (the error is of first order in the spacings) and against a
-//!   run with the bottom layer's modulus changed by `1e-12` (rods that
-//!   chatter for hundreds of bounces amplify any perturbation, a merge among
-//!   them, chaotically: a steel base under rubber moves `e` by `1e-4` for
-//!   that change). Twice the larger difference is reported. Levels halve
-//!   the spacings while the estimate keeps falling and the event budget
-//!   allows; the finest is reported.
+//!   assumed: lattices halve from a coarse start, and each level is set
+//!   against up to four coarser ones (the error is of first order in the
+//!   spacings, but falls in steps, so one comparison can land on a plateau)
+//!   and against a run with the bottom layer's modulus changed by `1e-12`
+//!   (rods that chatter for hundreds of bounces amplify any perturbation, a
+//!   merge among them, chaotically: a steel base under rubber moves `e` by
+//!   `1e-4` for that change). Twice the larger estimate is reported. Levels
+//!   halve the spacings until the estimate meets the target or the event
+//!   budget is spent; the finest is reported.
 //! - Rounding: estimated a priori from the number of events, unless a
 //!   contact decision of an exact run came within `1e-7` of going the other
 //!   way or the rod chattered; then the run is repeated in double-double
@@ -26,23 +27,10 @@
 use crate::config::{Precision, Resolution, WaveConfig};
 use crate::engine::{Tracer, WaveEngine};
 use crate::error::WaveError;
+use crate::real::DoubleDouble;
 use crate::real::Real;
 use impact_model::{ErrorEstimate, Outcome, Rod, StopReason};
 use std::time::Instant;
-use twofloat::TwoFloat;
-
-/// The lattice spacing of the slow lanes (fraction of the longest transit
-/// time) in a merged run: a slow lane then holds at most a thousand fronts.
-/// Coarser slow lattices cost accuracy where large fronts return (measured:
-/// `3.5e-4` in `e` at the paper's hard corner with `1e-2`, nothing with
-/// `1e-3`).
-const SLOW_WINDOW: f64 = 1e-3;
-
-/// The lattice spacing of every lane as a fraction of its own transit time
-/// in a merged run. Fast layers whose neighbours stay quiet for many of
-/// their round trips leap over them (see `leap`); the others ring on a
-/// lattice of twenty points a transit.
-const LANE_WINDOW: f64 = 0.05;
 
 /// Relative rounding error per event assumed a priori: a few operations of
 /// relative error `2^-53` each. Tested against double-double reruns.
@@ -79,7 +67,7 @@ pub fn solve(rod: &Rod, config: &WaveConfig) -> Result<Solution, WaveError> {
             per_transit,
             per_longest,
         } => {
-            let l = ladder(rod, config, per_transit, per_longest, 0, 0.0)?;
+            let l = fixed_lattice(rod, config, per_transit, per_longest)?;
             (l.0, Some(l.1))
         }
         Resolution::Auto {
@@ -98,7 +86,7 @@ pub fn solve(rod: &Rod, config: &WaveConfig) -> Result<Solution, WaveError> {
                     parts.push(format!(
                         "the exact run needs more than {exact_events} events"
                     ));
-                    let l = ladder(rod, config, LANE_WINDOW, SLOW_WINDOW, budget_events, target)?;
+                    let l = ladder(rod, config, budget_events, target)?;
                     (l.0, Some(l.1))
                 }
                 Err(e) => return Err(e),
@@ -134,7 +122,7 @@ pub fn solve(rod: &Rod, config: &WaveConfig) -> Result<Solution, WaveError> {
             },
             ..config.clone()
         };
-        let dd = run::<TwoFloat>(rod, dd_config)?;
+        let dd = run::<DoubleDouble>(rod, dd_config)?;
         let dd_outcome = finished(dd.outcome(), &dd)?;
         let loss = (dd_outcome.restitution - outcome.restitution).abs();
         estimate.double_precision_loss = Some(loss);
@@ -196,148 +184,178 @@ fn run<R: Real>(rod: &Rod, config: WaveConfig) -> Result<Tracer<R>, WaveError> {
 struct MergeCheck {
     per_transit: f64,
     per_longest: f64,
-    /// `|e - e(twice as coarse)|`.
-    doubled: f64,
     bound: f64,
     method: String,
 }
 
-/// Merged runs from spacings `(p, l)` down by halves: each level set
-/// against the one twice as coarse and against a perturbed twin, while the
-/// estimate keeps falling (by at least half) and the next level fits the
-/// budget of event-loop steps (0: one level only) and the bound is above
-/// `target`. The finest level is reported.
-fn ladder(
-    rod: &Rod,
-    config: &WaveConfig,
-    p: f64,
-    l: f64,
-    budget: u64,
-    target: f64,
-) -> Result<(WaveEngine, MergeCheck), WaveError> {
-    let at = |p: f64, l: f64| WaveConfig {
+/// How many coarser levels the reported one is set against: a merged `e`
+/// converges at first order on average but in steps (measured on a
+/// six-layer rod: the error stays put for two halvings, then falls eight
+/// times), so a level equal to the one twice as coarse says little alone.
+const LOOK_BACK: usize = 4;
+
+/// The refinement part of a merged bound from the values of `e` on
+/// lattices that halve (coarsest first): for first-order convergence,
+/// `|e(h) - e(2^j h)| / (2^j - 1)` estimates the error at `h` from each
+/// coarser level `j`; the largest of them over [`LOOK_BACK`] levels is
+/// taken, so that a plateau of the staircase cannot hide the next step.
+fn refinement_error(levels: &[f64]) -> f64 {
+    let Some((&fine, coarser)) = levels.split_last() else {
+        return 0.0;
+    };
+    coarser
+        .iter()
+        .rev()
+        .take(LOOK_BACK)
+        .zip(1..)
+        .map(|(&e, j)| (fine - e).abs() / (2f64.powi(j) - 1.0))
+        .fold(0.0, f64::max)
+}
+
+/// The coarsest spacing a ladder starts from: a fraction of each lane's
+/// transit time, and of the longest transit time (a slow lane then holds
+/// at most 250 fronts). Lattices of 0.4 transits were tried and dropped:
+/// their `e` is off by `5e-2` on six-layer rods, and set against finer
+/// levels it only inflated their bounds. The two halve together; their ratio keeps the
+/// slow lanes fifty times finer than their own transit-relative share,
+/// because coarse slow lattices cost accuracy where large fronts return
+/// (measured at the paper's hard corner).
+const LADDER_START: (f64, f64) = (0.2, 4e-3);
+
+/// Levels a ladder needs before its estimate is trusted: two comparisons.
+const MIN_LEVELS: usize = 3;
+
+/// The rod with its bottom layer's modulus changed by `1e-12`: rods that
+/// chatter for hundreds of bounces amplify any perturbation, a merge among
+/// them, chaotically (a steel base under rubber moves `e` by `1e-4`), and
+/// the twin's difference measures that.
+fn nudged(rod: &Rod) -> Rod {
+    let mut scene = rod.scene().clone();
+    scene.layers[0].modulus *= 1.0 + 1e-12;
+    scene.validate().unwrap_or_else(|_| rod.clone())
+}
+
+fn merged_at(config: &WaveConfig, p: f64, l: f64, max_events: u64) -> WaveConfig {
+    WaveConfig {
         resolution: Resolution::Merged {
             per_transit: p,
             per_longest: l,
         },
         precision: Precision::Double,
+        max_events: max_events.min(config.max_events),
         ..config.clone()
-    };
-    let mut scene = rod.scene().clone();
-    scene.layers[0].modulus *= 1.0 + 1e-12;
-    let nudged = scene.validate().unwrap_or_else(|_| rod.clone());
-    // the first level: the finest spacings (from the given ones, four times
-    // coarser at each try) whose run fits a quarter of the budget; a lane
-    // rings on its lattice unless its layer can leap, so the cost is not
-    // known before trying
-    let (mut p, mut l) = (p, l);
-    let mut used = 0;
-    let mut first = None;
-    if budget > 0 {
-        let cap = (budget / 4).max(1);
-        // the level and its coarser check both stay within the coarsest
-        // lattice a lane allows
-        while 2.0 * p <= COARSEST {
-            let capped = WaveConfig {
-                max_events: cap.min(config.max_events),
-                ..at(p, l)
-            };
-            match run::<f64>(rod, capped) {
-                Ok(e) => {
-                    used += e.steps();
-                    first = Some(e);
-                    break;
-                }
-                Err(WaveError::EventLimit { .. }) => {
-                    used += cap;
-                    if 2.0 * p >= COARSEST {
-                        break;
-                    }
-                    // four times coarser, or as coarse as allowed
-                    let grow = (4.0f64).min(COARSEST / (2.0 * p));
-                    p *= grow;
-                    l *= grow;
-                }
-                Err(e) => return Err(e),
-            }
-        }
     }
-    // the runs of a level are independent: the coarser check (first level
-    // only), the level itself and its perturbed twin run side by side
-    let (coarser_first, (fine_first, twin_first)) = rayon::join(
-        || run::<f64>(rod, at(2.0 * p, 2.0 * l)),
+}
+
+/// The bound of the reported level and how it was found.
+fn merge_check(levels: &[f64], perturbed: f64, p: f64, l: f64, used: u64) -> MergeCheck {
+    let refined = refinement_error(levels);
+    MergeCheck {
+        per_transit: p,
+        per_longest: l,
+        bound: 2.0 * refined.max(perturbed),
+        method: format!(
+            "merged: twice the larger of the refinement estimate ({refined:.1e}: the largest |e - e(2^j as coarse)| / (2^j - 1) over {} coarser lattices) and the difference from the bottom's modulus changed by 1e-12 ({perturbed:.1e}); lattice spacings {p:.3e} of each transit, {l:.1e} of the longest ({used} event-loop steps in all)",
+            (levels.len() - 1).min(LOOK_BACK),
+        ),
+    }
+}
+
+/// A merged run on the given lattice, checked against the lattices 2, 4,
+/// 8 and 16 times as coarse (those within [`COARSEST`]) and a perturbed
+/// twin, all run side by side.
+fn fixed_lattice(
+    rod: &Rod,
+    config: &WaveConfig,
+    p: f64,
+    l: f64,
+) -> Result<(WaveEngine, MergeCheck), WaveError> {
+    use rayon::prelude::*;
+    let twin_rod = nudged(rod);
+    let coarser: Vec<f64> = (1..=LOOK_BACK as i32)
+        .map(|j| 2f64.powi(j))
+        .filter(|f| f * p <= COARSEST)
+        .collect();
+    if coarser.is_empty() {
+        return Err(WaveError::Setting {
+            field: "merge window per transit",
+            allowed: "at most 0.25 (its error is measured on a lattice twice as coarse, and a lattice may be at most 0.5 of a transit)",
+            value: p,
+        });
+    }
+    let max = config.max_events;
+    let ((fine, twin), coarse) = rayon::join(
         || {
             rayon::join(
-                || match first.take() {
-                    Some(e) => Ok((e, 0)),
-                    None => run::<f64>(rod, at(p, l)).map(|e| {
-                        let steps = e.steps();
-                        (e, steps)
-                    }),
-                },
-                || run::<f64>(&nudged, at(p, l)),
+                || run::<f64>(rod, merged_at(config, p, l, max)),
+                || run::<f64>(&twin_rod, merged_at(config, p, l, max)),
             )
         },
+        || {
+            coarser
+                .par_iter()
+                .rev()
+                .map(|f| {
+                    run::<f64>(rod, merged_at(config, f * p, f * l, max))
+                        .map(|e| (e.restitution(), e.steps()))
+                })
+                .collect::<Result<Vec<_>, _>>()
+        },
     );
-    let mut coarser = coarser_first?;
-    used += coarser.steps();
-    let mut pending = Some((fine_first?, twin_first?));
-    let mut level = 0;
-    let mut last: Option<(WaveEngine, MergeCheck)> = None;
+    let (fine, twin, coarse) = (fine?, twin?, coarse?);
+    let used = fine.steps() + twin.steps() + coarse.iter().map(|c| c.1).sum::<u64>();
+    let mut levels: Vec<f64> = coarse.iter().map(|c| c.0).collect();
+    levels.push(fine.restitution());
+    let perturbed = (fine.restitution() - twin.restitution()).abs();
+    let check = merge_check(&levels, perturbed, p, l, used);
+    Ok((fine, check))
+}
+
+/// Merged runs from [`LADDER_START`] down by halves, each with its
+/// perturbed twin, until the bound is at most `target`, the next level
+/// would not fit the budget of event-loop steps, or the lattice reaches
+/// [`FINEST`]; at least [`MIN_LEVELS`] levels are run, whatever they cost
+/// (every scene finishes). The finest level is reported.
+fn ladder(
+    rod: &Rod,
+    config: &WaveConfig,
+    budget: u64,
+    target: f64,
+) -> Result<(WaveEngine, MergeCheck), WaveError> {
+    let twin_rod = nudged(rod);
+    let (mut p, mut l) = LADDER_START;
+    let mut used = 0;
+    let mut levels = Vec::new();
     loop {
-        let ((fine, fine_steps), twin) = match pending.take() {
-            Some(runs) => runs,
-            None => {
-                let (fine, twin) = rayon::join(
-                    || run::<f64>(rod, at(p, l)),
-                    || run::<f64>(&nudged, at(p, l)),
-                );
-                let fine = fine?;
-                let steps = fine.steps();
-                ((fine, steps), twin?)
-            }
-        };
-        used += fine_steps + twin.steps();
-        let e = fine.restitution();
-        let doubled = (e - coarser.restitution()).abs();
-        let perturbed = (e - twin.restitution()).abs();
-        // a lucky agreement with the coarser level is not trusted alone:
-        // the previous level's difference counts too
-        let previous = last.as_ref().map_or(0.0, |(_, c)| c.doubled);
-        let bound = 2.0 * doubled.max(perturbed).max(previous);
-        let check = MergeCheck {
-            per_transit: p,
-            per_longest: l,
-            doubled,
-            bound,
-            method: format!(
-                "merged: twice the larger difference from spacings twice as coarse ({doubled:.1e}) and from the bottom's modulus changed by 1e-12 ({perturbed:.1e}); lattice spacings {p:.3e} of each transit, {l:.1e} of the longest ({} levels, {used} event-loop steps in all)",
-                level + 1
-            ),
-        };
-        if std::env::var("LADDER").is_ok() {
+        let max = config.max_events;
+        let (fine, twin) = rayon::join(
+            || run::<f64>(rod, merged_at(config, p, l, max)),
+            || run::<f64>(&twin_rod, merged_at(config, p, l, max)),
+        );
+        let (fine, twin) = (fine?, twin?);
+        used += fine.steps() + twin.steps();
+        levels.push(fine.restitution());
+        let perturbed = (fine.restitution() - twin.restitution()).abs();
+        let check = merge_check(&levels, perturbed, p, l, used);
+        if std::env::var_os("IMPACT_LADDER").is_some() {
             eprintln!(
-                "level {level}: p {p:.2e} l {l:.2e} e {e:.12} doubled {doubled:.2e} perturbed {perturbed:.2e} steps fine {} twin {} used {used}",
-                fine.steps(),
-                twin.steps()
+                "level {}: p {p:.2e} e {:.12} bound {:.2e} perturbed {perturbed:.1e} steps {} used {used}",
+                levels.len(),
+                fine.restitution(),
+                check.bound,
+                fine.steps()
             );
         }
-        // refining that no longer helps (a chaotic rod) stops; the finest
-        // level is reported with its own estimate
-        let improving = last.as_ref().is_none_or(|(_, c)| bound <= 0.5 * c.bound);
-        if !improving {
-            return Ok((fine, check));
-        }
-        let next_cost = 3 * (fine.steps() + twin.steps());
-        let done = budget == 0 || bound <= target || used + next_cost > budget || p <= FINEST;
+        // events about double with each halving
+        let next_cost = 2 * (fine.steps() + twin.steps());
+        let enough = levels.len() >= MIN_LEVELS;
+        let done =
+            enough && (check.bound <= target || used + next_cost > budget) || p / 2.0 < FINEST;
         if done {
             return Ok((fine, check));
         }
-        coarser = fine;
-        last = Some((coarser.clone(), check));
         p /= 2.0;
         l /= 2.0;
-        level += 1;
     }
 }
 
