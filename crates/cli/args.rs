@@ -4,6 +4,7 @@
 use crate::input;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use impact_chain::{ChainConfig, ChainRecord, ChainStop};
+use impact_model::WallContact;
 use impact_rigid::{RigidConfig, RigidStop};
 use impact_study::{BilayerViscosity, Engine};
 use impact_wave::{Precision, Record, Resolution, StopRule, WaveConfig};
@@ -251,6 +252,15 @@ pub struct ViscosityArgs {
     /// Restitution e_2 of a whole-length rod made of P2
     #[arg(long, value_name = "E", allow_negative_numbers = true)]
     pub e2: Option<f64>,
+    /// The wall's contact law for viscous bottoms: paper (Sec. III: the bottom element's spring
+    /// and dashpot act while it is compressed, so the wall may pull) or unilateral (the wall only
+    /// pushes). The same physics for elastic rods. Default: the scene's, else paper
+    #[arg(long, value_name = "LAW", value_parser = parse_wall_contact)]
+    pub wall_contact: Option<WallContact>,
+}
+
+fn parse_wall_contact(s: &str) -> Result<WallContact, String> {
+    s.parse()
 }
 
 impl ViscosityArgs {
@@ -263,6 +273,7 @@ impl ViscosityArgs {
         BilayerViscosity {
             tau: [self.tau1, self.tau2],
             restitution: [self.e1, self.e2],
+            wall_contact: self.wall_contact,
         }
     }
 }
@@ -480,16 +491,15 @@ pub struct CalibrateArgs {
     /// Recompute the calibration table with the chain (minutes) and write it to --out
     #[arg(long)]
     pub regenerate: bool,
+    /// The wall's contact law whose table to use or regenerate: paper or unilateral
+    #[arg(long, value_name = "LAW", value_parser = parse_wall_contact, default_value = "paper")]
+    pub wall_contact: WallContact,
     /// Chain size for --regenerate (each entry uses N and 2N, Richardson-extrapolated)
     #[arg(long = "n", value_name = "N", default_value_t = 2000)]
     pub masses: usize,
-    /// Where --regenerate writes the table
-    #[arg(
-        long,
-        value_name = "FILE",
-        default_value = "data/calibration/kelvin-voigt.csv"
-    )]
-    pub out: PathBuf,
+    /// Where --regenerate writes the table [default: data/calibration/kelvin-voigt-<LAW>.csv]
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
     /// Print JSON instead of text
     #[arg(long)]
     pub json: bool,

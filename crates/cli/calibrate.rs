@@ -9,9 +9,10 @@ use rayon::prelude::*;
 use std::io::Write;
 
 pub fn calibrate(a: CalibrateArgs) -> anyhow::Result<()> {
-    let (lowest, widest) = calibration::range();
+    let law = a.wall_contact;
+    let (lowest, widest) = calibration::range(law);
     if let Some(e) = a.restitution {
-        let t = calibration::tau_c_over_l(e).ok_or_else(|| {
+        let t = calibration::tau_c_over_l(law, e).ok_or_else(|| {
             input(format!(
                 "--restitution must be a number in [{lowest:.4}, 1] (the calibrated range; got {e})"
             ))
@@ -19,7 +20,7 @@ pub fn calibrate(a: CalibrateArgs) -> anyhow::Result<()> {
         return print(&a, "restitution", e, "tau_c_over_l", t);
     }
     if let Some(t) = a.tau_c_over_l {
-        let e = calibration::restitution(t).ok_or_else(|| {
+        let e = calibration::restitution(law, t).ok_or_else(|| {
             input(format!(
                 "--tau-c-over-l must be a number in [0, {widest}] (the calibrated range; got {t})"
             ))
@@ -29,7 +30,7 @@ pub fn calibrate(a: CalibrateArgs) -> anyhow::Result<()> {
     if a.masses < 2 {
         return Err(input(format!("--n must be at least 2 (got {})", a.masses)));
     }
-    let grid = calibration_grid();
+    let grid = calibration_grid(law);
     eprintln!(
         "calibrating {} points with chains of {} and {} masses...",
         grid.len(),
@@ -39,16 +40,21 @@ pub fn calibrate(a: CalibrateArgs) -> anyhow::Result<()> {
     let start = std::time::Instant::now();
     let points = grid
         .par_iter()
-        .map(|&t| calibration_point(t, a.masses))
+        .map(|&t| calibration_point(t, a.masses, law))
         .collect::<Result<Vec<_>, _>>()?;
-    write_atomically(&a.out, |w| {
+    let out = a
+        .out
+        .clone()
+        .unwrap_or_else(|| format!("data/calibration/kelvin-voigt-{law}.csv").into());
+    write_atomically(&out, |w| {
         writeln!(
             w,
             "# Restitution of a homogeneous Kelvin-Voigt rod vs tau c / L (paper Sec. IV, Fig. 2)."
         )?;
+        writeln!(w, "# Wall contact law: {}.", law.describe())?;
         writeln!(
             w,
-            "# Written by `impact calibrate --regenerate --n {}` in {:.0} s.",
+            "# Written by `impact calibrate --regenerate --wall-contact {law} --n {}` in {:.0} s.",
             a.masses,
             start.elapsed().as_secs_f64()
         )?;
@@ -75,7 +81,7 @@ pub fn calibrate(a: CalibrateArgs) -> anyhow::Result<()> {
     })?;
     eprintln!(
         "wrote {} in {:.1} s; rebuild to use it",
-        a.out.display(),
+        out.display(),
         start.elapsed().as_secs_f64()
     );
     Ok(())

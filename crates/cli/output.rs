@@ -63,6 +63,7 @@ pub fn summary(title: &str, o: &Outcome) -> String {
         }
     };
     let _ = writeln!(s, "  engine               {engine}");
+    let _ = writeln!(s, "  wall contact         {}", o.wall_contact.describe());
     let _ = writeln!(s, "  restitution e        {:.12}", o.restitution);
     if let Some(est) = &o.error_estimate {
         let mut parts = vec![];
@@ -133,6 +134,9 @@ pub fn summary(title: &str, o: &Outcome) -> String {
         StopReason::Escaped => "free for good (no further contact is possible)",
         StopReason::Horizon => "horizon reached, rod free",
         StopReason::HorizonInContact => "horizon reached IN CONTACT: t_c is only a lower bound",
+        StopReason::RestsOnWall => {
+            "at rest against the wall for good (held by the paper's wall law): e = 0 up to the energy left"
+        }
     };
     let _ = writeln!(s, "  stopped at t = {}  {stop}", num(o.end_time));
     if let Some(events) = o.events {

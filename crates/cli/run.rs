@@ -34,6 +34,10 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
         ),
         None => (scene, format!("Scene {name}")),
     };
+    let mut scene = scene;
+    if let Some(law) = a.viscosity.wall_contact {
+        scene.wall_contact = Some(law);
+    }
     let rod = scene.validate().map_err(|e| input(e.to_string()))?;
     let trace = a.wall_trace.is_some();
     let wave_record = Record {

@@ -94,9 +94,41 @@ fn calibration_round_trip() {
     let t = v["tau_c_over_l"].as_f64().unwrap();
     let back = json(&["calibrate", "--tau-c-over-l", &t.to_string(), "--json"]);
     assert!((back["restitution"].as_f64().unwrap() - 0.72).abs() < 1e-9);
-    let out = impact(&["calibrate", "--restitution", "0.01"]);
+    // the paper's wall reaches e = 0.0088 at tau c/L = 1, and holds the rod
+    // beyond; the unilateral wall keeps e above 0.01 up to tau c/L = 3
+    let out = impact(&["calibrate", "--restitution", "0.005"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(stderr(&out).contains("calibrated range"));
+    let unilateral = ["calibrate", "--wall-contact", "unilateral"];
+    let out = impact(&[&unilateral[..], &["--restitution", "0.01"]].concat());
+    assert_eq!(out.status.code(), Some(2));
+    // the laws give different viscosities for one restitution
+    let law = |name: &str| {
+        json(&[
+            "calibrate",
+            "--wall-contact",
+            name,
+            "--restitution",
+            "0.2",
+            "--json",
+        ])["tau_c_over_l"]
+            .as_f64()
+            .unwrap()
+    };
+    assert!(law("unilateral") > 1.3 * law("paper"));
+    let out = impact(&[
+        "calibrate",
+        "--wall-contact",
+        "sticky",
+        "--restitution",
+        "0.4",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("'paper' or 'unilateral'"),
+        "{}",
+        stderr(&out)
+    );
 }
 
 #[test]

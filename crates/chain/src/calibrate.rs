@@ -2,9 +2,9 @@
 //! of a homogeneous Kelvin-Voigt rod as a function of `tau c / L` alone.
 
 use crate::{ChainConfig, ChainError, simulate};
-use impact_model::{Layer, Scene};
+use impact_model::{Layer, Scene, WallContact};
 
-/// How the table in `data/calibration/kelvin-voigt.csv` is made: each entry
+/// How the tables in `data/calibration/kelvin-voigt-<law>.csv` are made: each entry
 /// is the chain at `n` and `2n` masses, Richardson-extrapolated assuming the
 /// first-order convergence in `N` measured for viscous rods.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -16,13 +16,15 @@ pub struct CalibrationPoint {
     pub correction: f64,
 }
 
-/// Restitution of a homogeneous rod (`L = c = 1`) with `tau c / L = t`.
-pub fn homogeneous_restitution(t: f64, masses: usize) -> Result<f64, ChainError> {
+/// Restitution of a homogeneous rod (`L = c = 1`) with `tau c / L = t`
+/// under the wall contact law `law`.
+pub fn homogeneous_restitution(t: f64, masses: usize, law: WallContact) -> Result<f64, ChainError> {
     let mut layer = Layer::elastic(1.0, 1.0, 1.0);
     layer.relaxation_time = Some(t);
     let rod = Scene {
         impact_speed: 1.0,
         layers: vec![layer],
+        wall_contact: Some(law),
     }
     .validate()
     .map_err(|_| ChainError::Setting {
@@ -41,9 +43,13 @@ pub fn homogeneous_restitution(t: f64, masses: usize) -> Result<f64, ChainError>
 }
 
 /// One table entry from chains of `n` and `2 n` masses.
-pub fn calibration_point(t: f64, n: usize) -> Result<CalibrationPoint, ChainError> {
-    let coarse = homogeneous_restitution(t, n)?;
-    let fine = homogeneous_restitution(t, 2 * n)?;
+pub fn calibration_point(
+    t: f64,
+    n: usize,
+    law: WallContact,
+) -> Result<CalibrationPoint, ChainError> {
+    let coarse = homogeneous_restitution(t, n, law)?;
+    let fine = homogeneous_restitution(t, 2 * n, law)?;
     let correction = fine - coarse;
     Ok(CalibrationPoint {
         tau_c_over_l: t,
@@ -52,13 +58,19 @@ pub fn calibration_point(t: f64, n: usize) -> Result<CalibrationPoint, ChainErro
     })
 }
 
-/// The `tau c / L` values of the table: 0, then 6 per decade from `1e-4` to 3.
-pub fn calibration_grid() -> Vec<f64> {
+/// The `tau c / L` values of the table: 0, then 6 per decade from `1e-4` to
+/// 3 (unilateral wall) or to 1 (the paper's wall: beyond, the wall holds the
+/// rod, `e` falls below `1e-6` and no longer orders the table).
+pub fn calibration_grid(law: WallContact) -> Vec<f64> {
+    let last = match law {
+        WallContact::Paper => 1.0,
+        WallContact::Unilateral => 3.0,
+    };
     let mut grid = vec![0.0];
     let mut k = 0;
     loop {
         let t = 1e-4 * 10f64.powf(f64::from(k) / 6.0);
-        if t > 3.0 + 1e-9 {
+        if t > last + 1e-9 {
             break;
         }
         grid.push(t);

@@ -11,6 +11,8 @@
 //! physical (smooth) modes, whose decay per step `dt tau c^2 q^2` is tiny;
 //! the grid-scale modes it over-damps are over-damped physically too.
 
+use impact_model::WallContact;
+
 /// Backward-Euler solver for `(M - h D) v' = M v`, factorised once (Thomas
 /// algorithm) for each wall state. Each solve is two sweeps of one fused
 /// multiply-add per mass.
@@ -107,22 +109,25 @@ impl Dashpots {
 
     /// One backward-Euler step. While the wall element is compressed its
     /// dashpot acts on mass 0 like any other; `spring_impulse` is what the
-    /// wall spring gave during the step. The wall pushes, never pulls: if
-    /// spring plus dashpot would pull, the step is redone with the wall giving
-    /// no impulse at all (the dashpot cancels the spring, and the rod starts
-    /// to leave). Returns the dashpot's impulse on mass 0 (upward positive).
+    /// wall spring gave during the step. Under the paper's law that is all
+    /// (the wall may pull through the dashpot). Under the unilateral law the
+    /// wall pushes, never pulls: if spring plus dashpot would pull, the step
+    /// is redone with the wall giving no impulse at all (the dashpot cancels
+    /// the spring, and the rod starts to leave). Returns the dashpot's
+    /// impulse on mass 0 (upward positive).
     pub fn step(
         &mut self,
         mass: &[f64],
         v: &mut [f64],
         compressed: bool,
         spring_impulse: f64,
+        law: WallContact,
     ) -> f64 {
         if compressed && self.wall > 0.0 {
             self.scratch.copy_from_slice(v);
             self.with_wall.solve(mass, v, 0.0);
             let dashpot = -self.h * self.wall * v[0];
-            if dashpot + spring_impulse >= 0.0 {
+            if law == WallContact::Paper || dashpot + spring_impulse >= 0.0 {
                 return dashpot;
             }
             v.copy_from_slice(&self.scratch);
@@ -176,7 +181,7 @@ mod tests {
         let p0: f64 = v.iter().sum();
         let e0: f64 = v.iter().map(|x| x * x).sum();
         let spread0 = 12.0;
-        d.step(&mass, &mut v, false, 0.0);
+        d.step(&mass, &mut v, false, 0.0, WallContact::Unilateral);
         let e1: f64 = v.iter().map(|x| x * x).sum();
         assert!(e1 <= e0);
         assert!((v.iter().sum::<f64>() - p0).abs() < 1e-6 * p0.abs().max(1.0));

@@ -4,7 +4,7 @@ use crate::config::{ChainConfig, ChainStop};
 use crate::damping::Dashpots;
 use crate::error::ChainError;
 use crate::layout::ChainLayout;
-use impact_model::{ContactHistory, EngineKind, Outcome, Rod, StopReason};
+use impact_model::{ContactHistory, EngineKind, Outcome, Rod, StopReason, WallContact};
 use serde::Serialize;
 use std::time::Instant;
 
@@ -24,6 +24,10 @@ pub struct ChainRecording {
     pub raster: Vec<RasterFrame>,
 }
 
+/// Fraction of the impact's kinetic energy under which a rod held at the
+/// wall is at rest: a centre-of-mass speed of at most `1e-6 v_b`.
+const REST_ENERGY: f64 = 1e-12;
+
 /// The discrete chain for one rod.
 #[derive(Debug, Clone)]
 pub struct ChainEngine {
@@ -36,6 +40,7 @@ pub struct ChainEngine {
     a_prev: Vec<f64>,
     inv_mass: Vec<f64>,
     dashpots: Option<Dashpots>,
+    wall_contact: WallContact,
     dt: f64,
     t: f64,
     steps: u64,
@@ -94,6 +99,7 @@ impl ChainEngine {
             a: vec![0.0; n],
             a_prev: vec![0.0; n],
             dashpots,
+            wall_contact: rod.wall_contact(),
             dt,
             t: 0.0,
             steps: 0,
@@ -150,6 +156,19 @@ impl ChainEngine {
 
     pub fn in_contact(&self) -> bool {
         self.history.in_contact()
+    }
+
+    /// At rest against the wall for good: in contact under the paper's law
+    /// (whose wall can hold a viscous bottom), with a mechanical energy
+    /// below `REST_ENERGY` of the impact's. The dashpots then only drain
+    /// what is left; the rod would need energy to leave.
+    fn rests_on_wall(&self) -> bool {
+        self.wall_contact == WallContact::Paper
+            && self.dashpots.is_some()
+            && self.history.in_contact()
+            && self.stop == ChainStop::Escape
+            && self.mechanical_energy()
+                <= REST_ENERGY * 0.5 * self.total_mass * self.impact_speed.powi(2)
     }
 
     /// Kinetic energy plus spring energy (wall spring included while
@@ -218,6 +237,7 @@ impl ChainEngine {
                 &mut self.v,
                 self.u[0] < 0.0,
                 spring_impulse,
+                self.wall_contact,
             );
         }
         self.impulse += spring_impulse + wall_impulse;
@@ -347,6 +367,8 @@ impl ChainEngine {
                 && !self.history.in_contact()
             {
                 self.stopped = Some(StopReason::Escaped);
+            } else if self.steps.is_multiple_of(1024) && self.rests_on_wall() {
+                self.stopped = Some(StopReason::RestsOnWall);
             }
         }
         let mut o = self.outcome();
@@ -365,6 +387,7 @@ impl ChainEngine {
             self.stopped.unwrap_or(StopReason::HorizonInContact),
         );
         o.restitution_from_velocity = Some(self.mean_velocity() / self.impact_speed);
+        o.wall_contact = self.wall_contact;
         o.steps = Some(self.steps);
         o
     }

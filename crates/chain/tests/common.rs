@@ -12,6 +12,7 @@ pub fn homogeneous(tau_c_over_l: f64) -> Rod {
     Scene {
         impact_speed: 1.0,
         layers: vec![layer],
+        wall_contact: None,
     }
     .validate()
     .unwrap()

@@ -26,6 +26,7 @@ fn the_chain_has_the_rods_mass_and_length() {
             Layer::elastic(0.5, 0.2, 0.5),
             Layer::elastic(0.2, 1.5, 7.0),
         ],
+        wall_contact: None,
     };
     let rod = scene.validate().unwrap();
     let l = ChainLayout::new(&rod, 997).unwrap();

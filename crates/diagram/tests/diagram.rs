@@ -28,6 +28,7 @@ fn three_layers() -> Rod {
             Layer::elastic(0.5, 0.2, 0.5),
             Layer::elastic(0.2, 1.5, 7.0),
         ],
+        wall_contact: None,
     }
     .validate()
     .unwrap()

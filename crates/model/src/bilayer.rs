@@ -33,6 +33,7 @@ impl Bilayer {
         Scene {
             impact_speed: 1.0,
             layers: vec![p1, p2],
+            wall_contact: None,
         }
     }
 

@@ -64,6 +64,7 @@ mod tests {
         let rod = Scene {
             impact_speed: 1.0,
             layers: vec![Layer::elastic(1.0, e1, r1), Layer::elastic(1.0, e2, r2)],
+            wall_contact: None,
         }
         .validate()
         .unwrap();

@@ -22,6 +22,7 @@ pub mod rigid_bottom;
 pub mod scene;
 pub mod theory;
 pub mod units;
+pub mod wall_contact;
 
 pub use bilayer::Bilayer;
 pub use contact::ContactHistory;
@@ -29,3 +30,4 @@ pub use interface::InterfaceCoefficients;
 pub use outcome::{EngineKind, ErrorEstimate, Outcome, StopReason, Truncation};
 pub use scene::{Layer, LayerProps, Rod, Scene, SceneError};
 pub use units::Units;
+pub use wall_contact::WallContact;

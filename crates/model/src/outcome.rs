@@ -28,6 +28,12 @@ pub enum StopReason {
     /// The horizon was reached while the rod still touched the wall: `t_c` is
     /// then only a lower bound.
     HorizonInContact,
+    /// The rod came to rest against the wall and stays there: under the
+    /// paper's wall law a strong enough dashpot in the bottom element holds
+    /// it (the wall pulls as it would spring off). Final: `t_c` is infinite
+    /// in the model, reported as the stop time, and `e` is the final
+    /// (vanishing) centre-of-mass velocity.
+    RestsOnWall,
 }
 
 /// What the exact engine left out to save time, so it is never silent.
@@ -82,6 +88,10 @@ impl ErrorEstimate {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Outcome {
     pub engine: EngineKind,
+    /// The wall's contact law the run used (the same physics for elastic
+    /// rods, where no dashpot acts).
+    #[serde(default)]
+    pub wall_contact: crate::WallContact,
     /// Coefficient of restitution `e`: final centre-of-mass speed over `v_b`,
     /// from the wall impulse (paper Eq. 6).
     pub restitution: f64,
@@ -155,6 +165,7 @@ impl Outcome {
         let min_flight = transit_times.iter().copied().fold(f64::INFINITY, f64::min);
         Outcome {
             engine,
+            wall_contact: crate::WallContact::default(),
             restitution,
             restitution_from_velocity: None,
             contact_time,

@@ -1,5 +1,6 @@
 //! Scenes as users write them, and their validation into a [`Rod`].
 
+use crate::WallContact;
 use crate::units::Units;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
@@ -133,6 +134,9 @@ pub struct Scene {
     pub impact_speed: f64,
     /// Layers, bottom (touching the wall) first.
     pub layers: Vec<Layer>,
+    /// The wall's contact law (absent: the paper's, see [`WallContact`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub wall_contact: Option<WallContact>,
 }
 
 /// Why a scene is not a valid projectile. Every message names the field and the
@@ -231,7 +235,7 @@ impl Scene {
                 return Err(SceneError::ConflictingViscosity { index: i });
             }
             if let Some(e) = layer.restitution {
-                let (lowest, _) = crate::calibration::range();
+                let (lowest, _) = crate::calibration::range(self.wall_contact.unwrap_or_default());
                 if e < lowest {
                     return Err(SceneError::OutOfRange {
                         field: f("restitution"),
@@ -417,6 +421,11 @@ impl Rod {
     }
 
     /// The scales between the scene's units and internal units.
+    /// The wall's contact law: the scene's, or the paper's by default.
+    pub fn wall_contact(&self) -> WallContact {
+        self.scene.wall_contact.unwrap_or_default()
+    }
+
     pub fn units(&self) -> &Units {
         &self.units
     }
@@ -488,7 +497,8 @@ impl Rod {
         }
         match layer.restitution {
             Some(e) if e < 1.0 => {
-                let scaled = crate::calibration::tau_c_over_l(e).unwrap_or(f64::NAN);
+                let scaled =
+                    crate::calibration::tau_c_over_l(self.wall_contact(), e).unwrap_or(f64::NAN);
                 let total: f64 = self.scaled.last().map_or(0.0, |l| l.top);
                 scaled * total / self.scaled[i].wave_speed
             }
@@ -531,6 +541,7 @@ mod tests {
         Scene {
             impact_speed: 2.0,
             layers: vec![Layer::elastic(0.7, 4.0, 1.0), Layer::elastic(0.3, 1.0, 4.0)],
+            wall_contact: None,
         }
     }
 
@@ -553,6 +564,7 @@ mod tests {
         let scene = Scene {
             impact_speed: 1.0,
             layers: vec![Layer::elastic(2.0, 3.0, 5.0)],
+            wall_contact: None,
         };
         let rod = scene.validate().unwrap();
         let l = rod.scaled_layers()[0];
@@ -562,6 +574,7 @@ mod tests {
         let split = Scene {
             impact_speed: 1.0,
             layers: vec![Layer::elastic(0.5, 3.0, 5.0), Layer::elastic(1.5, 3.0, 5.0)],
+            wall_contact: None,
         };
         let split = split.validate().unwrap();
         // internal units follow the layers, so compare in scene units:
@@ -591,6 +604,7 @@ mod tests {
                 Layer::elastic(0.001, 200e9, 7850.0),
                 Layer::elastic(0.1, 2e6, 1100.0),
             ],
+            wall_contact: None,
         }
         .validate()
         .unwrap();
@@ -609,6 +623,7 @@ mod tests {
         let s = Scene {
             impact_speed: 1.0,
             layers: vec![Layer::elastic(1e-100, 1e-300, 1e-300)],
+            wall_contact: None,
         };
         let msg = s.validate().unwrap_err().to_string();
         assert!(msg.starts_with("layers[0]: mass per unit area"), "{msg}");
@@ -619,6 +634,7 @@ mod tests {
                 Layer::elastic(1.0, 1e300, 1.0),
                 Layer::elastic(1.0, 1e-20, 1.0),
             ],
+            wall_contact: None,
         };
         let msg = s.validate().unwrap_err().to_string();
         assert!(msg.starts_with("layers[1]: "), "{msg}");
@@ -682,6 +698,7 @@ mod tests {
         let s = Scene {
             impact_speed: 1.0,
             layers: vec![],
+            wall_contact: None,
         };
         assert_eq!(s.validate().unwrap_err(), SceneError::NoLayers);
         let mut s = two_layers();

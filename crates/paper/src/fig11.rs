@@ -13,6 +13,7 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
     let rod = Scene {
         impact_speed: 1.0,
         layers: vec![Layer::elastic(1.0, 1.0, 1.0)],
+        wall_contact: None,
     }
     .validate()
     .map_err(|e| PaperError::Engine(e.to_string()))?;

@@ -84,6 +84,7 @@ fn a_tiny_reproduction_writes_every_file_and_its_numbers_are_the_engines() {
         let rod = impact_model::Scene {
             impact_speed: 1.0,
             layers: vec![impact_model::Layer::elastic(1.0, 1.0, 1.0)],
+            wall_contact: None,
         }
         .validate()
         .unwrap();

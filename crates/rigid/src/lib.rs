@@ -26,5 +26,6 @@ pub fn simulate(rod: &Rod, config: &RigidConfig) -> Result<Outcome, RigidError> 
     let start = std::time::Instant::now();
     let mut outcome = RigidBottom::new(rod, config)?.run()?;
     outcome.elapsed_seconds = start.elapsed().as_secs_f64();
+    outcome.wall_contact = rod.wall_contact();
     Ok(outcome)
 }

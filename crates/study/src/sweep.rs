@@ -1,7 +1,7 @@
 //! Parallel sweeps over a grid, one row per point in grid order.
 
 use impact_chain::ChainConfig;
-use impact_model::{Bilayer, Outcome, Scene};
+use impact_model::{Bilayer, Outcome, Scene, WallContact};
 use impact_rigid::RigidConfig;
 use impact_wave::WaveConfig;
 use rayon::prelude::*;
@@ -22,6 +22,8 @@ pub enum Engine {
 pub struct BilayerViscosity {
     pub tau: [Option<f64>; 2],
     pub restitution: [Option<f64>; 2],
+    /// The wall's contact law (absent: the paper's).
+    pub wall_contact: Option<WallContact>,
 }
 
 impl BilayerViscosity {
@@ -32,6 +34,7 @@ impl BilayerViscosity {
             layer.relaxation_time = self.tau[i];
             layer.restitution = self.restitution[i];
         }
+        scene.wall_contact = self.wall_contact;
         scene
     }
 
@@ -78,6 +81,8 @@ pub struct Row {
     pub x: f64,
     pub alpha: f64,
     pub engine: String,
+    /// The wall's contact law of the run (`paper` or `unilateral`).
+    pub wall_contact: String,
     pub restitution: Option<f64>,
     pub restitution_from_velocity: Option<f64>,
     pub contact_time: Option<f64>,
@@ -104,6 +109,7 @@ impl Row {
     fn new(
         point: Bilayer,
         engine: &'static str,
+        wall_contact: WallContact,
         result: Result<Outcome, String>,
         timing: bool,
     ) -> Self {
@@ -111,6 +117,7 @@ impl Row {
             x: point.x,
             alpha: point.alpha,
             engine: engine.to_string(),
+            wall_contact: wall_contact.to_string(),
             restitution: None,
             restitution_from_velocity: None,
             contact_time: None,
@@ -142,6 +149,7 @@ impl Row {
                         impact_model::StopReason::Escaped => "escaped",
                         impact_model::StopReason::Horizon => "horizon",
                         impact_model::StopReason::HorizonInContact => "horizon_in_contact",
+                        impact_model::StopReason::RestsOnWall => "rests_on_wall",
                     }
                     .to_string(),
                 );
@@ -161,7 +169,7 @@ impl Row {
     /// CSV header matching [`Row::csv`].
     pub fn csv_header(timing: bool) -> String {
         let mut h = String::from(
-            "x,alpha,engine,restitution,restitution_from_velocity,contact_time,reduced_contact_time,n1,bounces,separations,end_time,stop_reason,events,steps,dropped_fronts,merged_fronts,error_bound",
+            "x,alpha,engine,wall_contact,restitution,restitution_from_velocity,contact_time,reduced_contact_time,n1,bounces,separations,end_time,stop_reason,events,steps,dropped_fronts,merged_fronts,error_bound",
         );
         if timing {
             h.push_str(",elapsed_seconds");
@@ -180,6 +188,7 @@ impl Row {
             self.x.to_string(),
             self.alpha.to_string(),
             self.engine.to_string(),
+            self.wall_contact.clone(),
             cell(&self.restitution),
             cell(&self.restitution_from_velocity),
             cell(&self.contact_time),
@@ -267,7 +276,8 @@ pub fn sweep(
     points
         .par_iter()
         .map(|&(index, p)| {
-            let row = Row::new(p, engine.name(), engine.run(p, viscosity), timing);
+            let law = viscosity.wall_contact.unwrap_or_default();
+            let row = Row::new(p, engine.name(), law, engine.run(p, viscosity), timing);
             on_row(index, &row);
             row
         })
@@ -311,6 +321,7 @@ mod tests {
                 alpha: 0.05,
             },
             "wave",
+            WallContact::Paper,
             Engine::Wave(WaveConfig::default()).run(
                 Bilayer {
                     x: 0.4,
@@ -331,6 +342,7 @@ mod tests {
                 alpha: 0.05,
             },
             "wave",
+            WallContact::Paper,
             Err("no".into()),
             true,
         );
@@ -344,6 +356,7 @@ mod tests {
                 alpha: 0.05,
             },
             "wave",
+            WallContact::Paper,
             Err("a, \"b\"".into()),
             false,
         );

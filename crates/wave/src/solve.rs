@@ -164,6 +164,7 @@ pub fn solve(rod: &Rod, config: &WaveConfig) -> Result<Solution, WaveError> {
     }
     estimate.method = parts.join("; ");
     let mut outcome = outcome.with_error(estimate);
+    outcome.wall_contact = rod.wall_contact();
     outcome.elapsed_seconds = start.elapsed().as_secs_f64();
     Ok(Solution {
         outcome,

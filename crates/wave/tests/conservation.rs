@@ -55,6 +55,7 @@ fn three_layers(speed: f64, scale: f64) -> Scene {
     Scene {
         impact_speed: speed,
         layers,
+        wall_contact: None,
     }
 }
 

@@ -84,6 +84,7 @@ fn random_layered_rods_finish_within_their_bound() {
         let scene = Scene {
             impact_speed: 1.0,
             layers,
+            wall_contact: None,
         };
         let rod = scene.validate().unwrap();
         let t0 = Instant::now();
@@ -219,6 +220,7 @@ impl Rescale {
                     ..l.clone()
                 })
                 .collect(),
+            wall_contact: None,
         }
     }
 
@@ -339,6 +341,7 @@ fn unrepresentable_wave_speeds_are_refused() {
     let layer = |length: f64, modulus: f64, density: f64| Scene {
         impact_speed: 1.0,
         layers: vec![Layer::elastic(length, modulus, density)],
+        wall_contact: None,
     };
     let rod = |modulus: f64, density: f64| layer(1.0, modulus, density);
     for (length, modulus, density, named) in [
@@ -387,6 +390,7 @@ fn double_precision_stays_within_its_a_priori_bound() {
                     soft_density,
                 ),
             ],
+            wall_contact: None,
         }
         .validate()
         .unwrap();

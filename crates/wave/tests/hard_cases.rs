@@ -272,6 +272,7 @@ fn scene(layers: &[(f64, f64, f64)]) -> impact_model::Rod {
             .iter()
             .map(|&(l, e, rho)| impact_model::Layer::elastic(l, e, rho))
             .collect(),
+        wall_contact: None,
     }
     .validate()
     .unwrap()

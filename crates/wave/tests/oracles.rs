@@ -15,6 +15,7 @@ fn homogeneous_rod_rebounds_elastically_after_two_transits() {
         let scene = Scene {
             impact_speed: speed,
             layers: vec![Layer::elastic(length, modulus, density)],
+            wall_contact: None,
         };
         let o = simulate(&scene.validate().unwrap(), &WaveConfig::default()).unwrap();
         let c = (modulus / density).sqrt();
@@ -34,6 +35,7 @@ fn a_homogeneous_rod_cut_into_layers_is_still_homogeneous() {
     let scene = Scene {
         impact_speed: 1.0,
         layers,
+        wall_contact: None,
     };
     let o = simulate(&scene.validate().unwrap(), &WaveConfig::default()).unwrap();
     assert!((o.restitution - 1.0).abs() < 1e-14);
