@@ -586,6 +586,9 @@ pub struct CostArgs {
     /// A small study (seconds): fewer sizes and tolerances
     #[arg(long)]
     pub quick: bool,
+    /// The wall's contact law of the viscous part of the study: paper (default) or unilateral
+    #[arg(long, value_name = "LAW", value_parser = parse_wall_contact)]
+    pub wall_contact: Option<WallContact>,
 }
 
 /// What to simulate: a scene file, or the canonical bilayer.

@@ -15,6 +15,10 @@ pub fn cost(a: CostArgs) -> anyhow::Result<()> {
             (b.scene(), format!("x = {}, alpha = {}", a.x, a.alpha))
         }
     };
+    let mut scene = scene;
+    if let Some(law) = a.wall_contact {
+        scene.wall_contact = Some(law);
+    }
     let rod = scene.validate().map_err(|e| input(e.to_string()))?;
     if rod.is_viscous() {
         return Err(input(
