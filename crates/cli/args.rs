@@ -59,6 +59,18 @@ pub enum EngineChoice {
     RigidBottom,
 }
 
+impl WaveArgs {
+    /// `--target`, checked.
+    pub fn target(&self) -> anyhow::Result<Option<f64>> {
+        match self.target {
+            Some(t) if !(t.is_finite() && t > 0.0) => Err(input(format!(
+                "--target must be a finite number > 0 (got {t})"
+            ))),
+            t => Ok(t),
+        }
+    }
+}
+
 /// Settings of the exact engine.
 #[derive(Args, Debug, Clone)]
 pub struct WaveArgs {
@@ -79,14 +91,9 @@ pub struct WaveArgs {
     /// Events a merged run may take under --resolution auto (the windows are chosen from it)
     #[arg(long, value_name = "N", default_value_t = 4_000_000)]
     pub event_budget: u64,
-    /// Under --resolution auto, refine merged runs until the error bound on e is at most DE (or the budget is spent)
-    #[arg(
-        long,
-        value_name = "DE",
-        default_value_t = 1e-5,
-        allow_negative_numbers = true
-    )]
-    pub target: f64,
+    /// Target error on e. Exact engine (--resolution auto): refine merged runs until the error bound is at most DE (default 1e-5, or until the budget is spent). Chain on a viscous scene without --n: double N until the extrapolation's error estimate is at most DE (default: N = 250, 500, 1000 only)
+    #[arg(long, value_name = "DE", allow_negative_numbers = true)]
+    pub target: Option<f64>,
     /// Arithmetic: checked (double, repeated in double-double when rounding may matter), double, double-double
     #[arg(long, value_enum, default_value_t = PrecisionChoice::Checked)]
     pub precision: PrecisionChoice,
@@ -302,19 +309,11 @@ impl WaveArgs {
                 ));
             }
             (ResolutionChoice::Exact, None) => Resolution::Exact,
-            (ResolutionChoice::Auto, None) => {
-                if !(self.target.is_finite() && self.target > 0.0) {
-                    return Err(input(format!(
-                        "--target must be a finite number > 0 (got {})",
-                        self.target
-                    )));
-                }
-                Resolution::Auto {
-                    exact_events: 200_000,
-                    budget_events: self.event_budget,
-                    target: self.target,
-                }
-            }
+            (ResolutionChoice::Auto, None) => Resolution::Auto {
+                exact_events: 200_000,
+                budget_events: self.event_budget,
+                target: self.target()?.unwrap_or(1e-5),
+            },
             (_, window) => {
                 let w = window.unwrap_or(1e-2);
                 // the error is measured at twice the window, which may be at
@@ -358,9 +357,19 @@ pub struct RunArgs {
     /// Also write the wall history (time, strain, height, velocity) to this CSV file
     #[arg(long, value_name = "FILE")]
     pub wall_trace: Option<PathBuf>,
-    /// Number of masses of the chain (the paper's 10^4); at least one per layer
-    #[arg(long = "n", value_name = "N", default_value_t = 10_000)]
-    pub masses: usize,
+    /// Run one chain of N masses. Without it a viscous scene runs chains of
+    /// 250, 500 and 1000 masses and extrapolates e to N -> infinity with an
+    /// error estimate; an elastic scene on the chain runs the paper's 10^4
+    #[arg(long = "n", value_name = "N")]
+    pub masses: Option<usize>,
+    /// The largest chain --target may run
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 64_000,
+        conflicts_with = "masses"
+    )]
+    pub max_n: usize,
     #[command(flatten)]
     pub engine: EngineArgs,
 }

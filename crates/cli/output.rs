@@ -64,6 +64,31 @@ pub fn summary(title: &str, o: &Outcome) -> String {
     };
     let _ = writeln!(s, "  engine               {engine}");
     let _ = writeln!(s, "  wall contact         {}", o.wall_contact.describe());
+    if let Some(x) = &o.extrapolation {
+        let _ = writeln!(
+            s,
+            "  restitution e        {:.9} +- {:.1e}  (N -> infinity, Richardson)",
+            x.value, x.error
+        );
+        let runs: Vec<String> = x
+            .sizes
+            .iter()
+            .zip(&x.values)
+            .map(|(n, e)| format!("{n}: {e:.9}"))
+            .collect();
+        let _ = writeln!(s, "  chains N: e          {}", runs.join(", "));
+        let order = x
+            .order
+            .map_or("none (changes not monotone)".to_string(), |p| {
+                format!("{p:.2}")
+            });
+        let _ = writeln!(s, "  observed order in N  {order}");
+        if let Some(note) = &x.note {
+            let _ = writeln!(s, "  not clean            {note}: estimate widened");
+        }
+        let last = x.sizes.last().copied().unwrap_or(0);
+        let _ = writeln!(s, "  (the figures below are the chain of N = {last})");
+    }
     let _ = writeln!(s, "  restitution e        {:.12}", o.restitution);
     if let Some(est) = &o.error_estimate {
         let mut parts = vec![];

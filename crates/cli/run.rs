@@ -4,10 +4,10 @@ use crate::args::RunArgs;
 use crate::input;
 use crate::output::{summary, write_atomically};
 use anyhow::Context;
-use impact_chain::{ChainEngine, ChainLayout, ChainRecord};
+use impact_chain::{ChainEngine, ChainError, ChainLayout, ChainRecord};
 use impact_model::Scene;
 use impact_rigid::RigidError;
-use impact_study::Engine;
+use impact_study::{Engine, LimitSettings, chain_limit};
 use impact_wave::{Record, WaveError};
 use std::io::Write;
 
@@ -48,9 +48,27 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
         wall_every: trace.then_some(16),
         raster: None,
     };
+    let masses = a.masses.unwrap_or(10_000);
     let engine = a
         .engine
-        .engine(rod.is_viscous(), a.masses, wave_record, chain_record)?;
+        .engine(rod.is_viscous(), masses, wave_record, chain_record)?;
+    let target = a.engine.wave.target()?;
+    if a.max_n < 1000 {
+        return Err(input(format!(
+            "--max-n must be at least 1000 (got {})",
+            a.max_n
+        )));
+    }
+    if rod.is_viscous() && a.masses.is_some() && target.is_some() {
+        return Err(input(
+            "--target drives the chain's extrapolation over N; it cannot go with --n (one chain)",
+        ));
+    }
+    let limit = (rod.is_viscous() && a.masses.is_none()).then_some(LimitSettings {
+        target,
+        max_masses: a.max_n,
+        ..LimitSettings::default()
+    });
     let (outcome, wall): (_, Vec<[f64; 4]>) = match engine {
         Engine::Wave(config) => {
             let solution = impact_wave::solve(&rod, &config).map_err(wave_failure)?;
@@ -63,6 +81,18 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
                 .map(|s| [s.time, s.strain, s.height, s.velocity])
                 .collect();
             (o, wall)
+        }
+        Engine::Chain(config) if limit.is_some() => {
+            let settings = limit.unwrap_or_default();
+            let done = chain_limit(&rod, &config, &settings).map_err(chain_failure)?;
+            if done.target_met == Some(false) {
+                eprintln!(
+                    "warning: --target {} not met with chains up to --max-n {}: the estimate is the one below",
+                    settings.target.unwrap_or(0.0),
+                    settings.max_masses
+                );
+            }
+            (done.outcome, done.recording.wall)
         }
         Engine::Chain(config) => {
             let layout = ChainLayout::new(&rod, config.masses).map_err(|e| input(e.to_string()))?;
@@ -107,6 +137,14 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
         write!(stdout, "{}", summary(&title, &outcome))?;
     }
     Ok(())
+}
+
+/// A chain failure: settings are input errors (exit 2), the rest exit 1.
+fn chain_failure(e: ChainError) -> anyhow::Error {
+    match e {
+        ChainError::Setting { .. } | ChainError::TooFewMasses { .. } => input(e.to_string()),
+        e => anyhow::Error::new(e).context("the chain could not finish"),
+    }
 }
 
 /// An exact-engine failure as the command line reports it: settings are

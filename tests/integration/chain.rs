@@ -225,3 +225,55 @@ fn the_wall_contact_law_is_named_and_matters_only_for_a_viscous_bottom() {
     let column = header.iter().position(|h| *h == "wall_contact").unwrap();
     assert_eq!(row[column], "unilateral");
 }
+
+/// A viscous `impact run` without `--n` answers for `N -> infinity`: three
+/// chains, their order and the extrapolated `e` with an error estimate, in
+/// JSON and the summary; the finest chain's figures stay alongside. With
+/// `--n` it is one chain, and `--target` cannot go with it.
+#[test]
+fn a_viscous_run_extrapolates_to_the_continuum_by_default() {
+    let args = [
+        "run", "--x", "0.5", "--alpha", "0.3", "--tau1", "0.08", "--tau2", "0.5", "--json",
+    ];
+    let v = json(&args);
+    let x = &v["extrapolation"];
+    let sizes: Vec<u64> = x["sizes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|n| n.as_u64().unwrap())
+        .collect();
+    assert_eq!(sizes, [250, 500, 1000]);
+    let values: Vec<f64> = x["values"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| e.as_f64().unwrap())
+        .collect();
+    assert_eq!(values[2], v["restitution"].as_f64().unwrap());
+    let (value, error) = (x["value"].as_f64().unwrap(), x["error"].as_f64().unwrap());
+    assert!(error > 0.0 && error < 1e-3, "{x}");
+    // the correction goes the way the chains converge
+    assert!((value - values[2]) * (values[2] - values[1]) > 0.0, "{x}");
+    let out = impact(&args[..args.len() - 1]);
+    let text = stdout(&out);
+    assert!(text.contains("(N -> infinity, Richardson)"), "{text}");
+    assert!(text.contains("observed order in N"), "{text}");
+    // an elastic top keeps sharp fronts: said, and the estimate widened
+    let elastic_top = json(&[
+        "run", "--x", "0.5", "--alpha", "0.3", "--tau1", "0.08", "--json",
+    ]);
+    let note = elastic_top["extrapolation"]["note"].as_str().unwrap();
+    assert!(note.contains("elastic layer"), "{note}");
+    assert!(elastic_top["extrapolation"]["error"].as_f64().unwrap() > error);
+    // one chain with --n
+    let one = json(&[
+        "run", "--x", "0.5", "--alpha", "0.3", "--tau1", "0.08", "--n", "300", "--json",
+    ]);
+    assert!(one.get("extrapolation").is_none());
+    let bad = impact(&[
+        "run", "--x", "0.5", "--alpha", "0.3", "--tau1", "0.08", "--n", "300", "--target", "1e-4",
+    ]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("--target"));
+}

@@ -220,22 +220,23 @@ impl ChainEngine {
         let mut wall_impulse = 0.0;
         let u0_old = self.u[0];
         beeman_positions(&mut self.u, &self.v, &self.a, &self.a_prev, dt);
+        let force = self.spring_wall_force(self.u[0]);
+        let spring_impulse = 0.5 * dt * (self.wall_force + force);
+        let (k, inv_m) = (&self.layout.stiffness, &self.inv_mass);
         beeman_velocities(
             &self.u,
             &mut self.v,
             &mut self.a,
             &mut self.a_prev,
-            &self.layout.stiffness,
-            &self.inv_mass,
+            k,
+            inv_m,
             dt,
         );
-        let force = self.spring_wall_force(self.u[0]);
-        let spring_impulse = 0.5 * dt * (self.wall_force + force);
         if let Some(d) = &mut self.dashpots {
             wall_impulse += d.step(
                 &self.layout.mass,
                 &mut self.v,
-                self.u[0] < 0.0,
+                compressed_fraction(u0_old, self.u[0]),
                 spring_impulse,
                 self.wall_contact,
             );
@@ -390,6 +391,20 @@ impl ChainEngine {
         o.wall_contact = self.wall_contact;
         o.steps = Some(self.steps);
         o
+    }
+}
+
+/// The fraction of a step from `u0_old` to `u0` during which the wall
+/// element was compressed (`u0 < 0`), the crossing timed by linear
+/// interpolation: a wall dashpot switched on or off inside a step acts for
+/// that fraction, which keeps the step second order where the contact
+/// begins or ends (switching it for whole steps is first order).
+fn compressed_fraction(u0_old: f64, u0: f64) -> f64 {
+    match (u0_old < 0.0, u0 < 0.0) {
+        (true, true) => 1.0,
+        (false, false) => 0.0,
+        (true, false) => u0_old / (u0_old - u0),
+        (false, true) => u0 / (u0 - u0_old),
     }
 }
 

@@ -114,12 +114,13 @@ fn bilayer(x: f64, alpha: f64, tau: [f64; 2], law: WallContact) -> Rod {
     with_law(scene, law)
 }
 
-/// Both laws, on the issue's five scenes, at `N = 200`: the engine at a
-/// step 32 times below the paper's (its dashpot step is of first order, so
-/// that isolates the law from the step) agrees with the explicit oracle at
-/// `dt / 200`; the laws differ where the bottom is viscous, by the amounts
-/// the issue measured (`tau c / L = 1`: `e = 0.009` under the paper's law,
-/// `0.151` unilateral), and coincide where it is not.
+/// Both laws, on the issue's five scenes, at `N = 200`: the engine at the
+/// paper's step agrees with the explicit oracle at `dt / 200` to 3e-5; the
+/// laws differ where the bottom is viscous, by the amounts the issue
+/// measured (`tau c / L = 1`: `e = 0.009` under the paper's law, `0.151`
+/// unilateral), and coincide where it is not. One exception, stated and
+/// tested in `dt_order.rs`: the over-damped wall (`tau c / L = 1`, paper's
+/// law) needs `dt / 32` for 3e-5 (1e-4 at the paper's step).
 #[test]
 fn both_laws_agree_with_an_explicit_chain() {
     const N: usize = 200;
@@ -141,7 +142,9 @@ fn both_laws_agree_with_an_explicit_chain() {
             .map(|&(name, rod, law)| {
                 let rod = rod(law);
                 let oracle = explicit_chain(&rod, N, law, 200.0);
-                (name, law, engine(&rod, N, 1.0 / 32.0), oracle)
+                let overdamped = name.ends_with("= 1") && law == WallContact::Paper;
+                let dt_factor = if overdamped { 1.0 / 32.0 } else { 1.0 };
+                (name, law, engine(&rod, N, dt_factor), oracle)
             })
             .collect()
     }
@@ -161,7 +164,7 @@ fn both_laws_agree_with_an_explicit_chain() {
         for &(_, law, e, oracle) in pair {
             eprintln!("{name}, {law}: engine {e:.6}, explicit oracle {oracle:.6}");
             assert!(
-                (e - oracle).abs() < 1e-4,
+                (e - oracle).abs() < 3e-5,
                 "{name}, {law}: engine {e} vs explicit {oracle}"
             );
         }

@@ -3,6 +3,7 @@
 use crate::{CostError, CostSettings, exact_reference};
 use impact_chain::{ChainConfig, simulate};
 use impact_model::Rod;
+use impact_model::richardson::extrapolate;
 use serde::Serialize;
 use std::time::Instant;
 
@@ -11,8 +12,10 @@ use std::time::Instant;
 pub struct ChainCost {
     /// `"elastic"` or `"viscous"`.
     pub kind: String,
-    /// `"masses"` (N varied at the paper's step) or `"time_step"` (the step
-    /// varied at fixed N).
+    /// `"masses"` (N varied at the paper's step), `"time_step"` (the step
+    /// varied at fixed N) or `"extrapolated"` (three successive sizes of the
+    /// N study, Richardson-extrapolated: `masses` is the largest, the time
+    /// and work are the three runs').
     pub study: String,
     pub masses: usize,
     pub dt_factor: f64,
@@ -62,11 +65,12 @@ pub fn chain_study(
         let (seconds, o) = run(rod, s.dt_masses, f)?;
         out.push((s.dt_masses, f, o.restitution, seconds, o.steps.unwrap_or(0)));
     }
-    let limit = reference.unwrap_or_else(|| richardson(&out[..s.sizes.len()]));
-    let rows = out
-        .into_iter()
+    let n_runs = &out[..n_study];
+    let limit = reference.unwrap_or_else(|| limit_of(n_runs));
+    let mut rows: Vec<ChainCost> = out
+        .iter()
         .enumerate()
-        .map(|(i, (masses, dt_factor, e, seconds, steps))| ChainCost {
+        .map(|(i, &(masses, dt_factor, e, seconds, steps))| ChainCost {
             kind: kind.to_string(),
             study: if i < n_study { "masses" } else { "time_step" }.to_string(),
             masses,
@@ -78,29 +82,49 @@ pub fn chain_study(
             mass_steps: steps as f64 * masses as f64,
         })
         .collect();
+    if reference.is_none() {
+        rows.extend(extrapolated(kind, n_runs, limit));
+    }
     Ok((rows, limit))
 }
 
-/// Richardson limit from the last three sizes (self-consistent order). When
-/// the differences change sign the convergence is not yet monotone and
-/// extrapolation would be noise: the finest value is the limit then.
-fn richardson(runs: &[(usize, f64, f64, f64, u64)]) -> f64 {
+/// The chain's own limit: Richardson over the three largest sizes
+/// (`impact_model::richardson`), or the largest size's value when there
+/// are fewer than three.
+fn limit_of(runs: &[(usize, f64, f64, f64, u64)]) -> f64 {
+    let sizes: Vec<usize> = runs.iter().map(|r| r.0).collect();
+    let values: Vec<f64> = runs.iter().map(|r| r.2).collect();
     let k = runs.len();
     if k < 3 {
-        return runs.last().map_or(f64::NAN, |r| r.2);
+        return values.last().copied().unwrap_or(f64::NAN);
     }
-    let (e1, e2, e3) = (runs[k - 3].2, runs[k - 2].2, runs[k - 1].2);
-    if (e2 - e1) * (e3 - e2) <= 0.0 {
-        return e3;
-    }
-    let r = runs[k - 1].0 as f64 / runs[k - 2].0 as f64;
-    let p = ((e2 - e1).abs() / (e3 - e2).abs()).ln() / r.ln();
-    let p = if p.is_finite() {
-        p.clamp(0.25, 4.0)
-    } else {
-        1.0
-    };
-    e3 + (e3 - e2) / (r.powf(p) - 1.0)
+    extrapolate(&sizes[k - 3..], &values[k - 3..], false).map_or(values[k - 1], |x| x.value)
+}
+
+/// What `impact run` does on a viscous scene, at every rung of the N study:
+/// three successive sizes extrapolated, costing the three runs together.
+/// The last triple defines the limit, so it is left out.
+fn extrapolated(kind: &str, runs: &[(usize, f64, f64, f64, u64)], limit: f64) -> Vec<ChainCost> {
+    let k = runs.len();
+    (2..k.saturating_sub(1))
+        .filter_map(|j| {
+            let triple = &runs[j - 2..=j];
+            let sizes: Vec<usize> = triple.iter().map(|r| r.0).collect();
+            let values: Vec<f64> = triple.iter().map(|r| r.2).collect();
+            let x = extrapolate(&sizes, &values, false)?;
+            Some(ChainCost {
+                kind: kind.to_string(),
+                study: "extrapolated".to_string(),
+                masses: sizes[2],
+                dt_factor: 1.0,
+                restitution: x.value,
+                restitution_error: (x.value - limit).abs(),
+                seconds: triple.iter().map(|r| r.3).sum(),
+                steps: triple.iter().map(|r| r.4).sum(),
+                mass_steps: triple.iter().map(|r| r.4 as f64 * r.0 as f64).sum(),
+            })
+        })
+        .collect()
 }
 
 /// The headline: the smallest doubling of N from 100 at which the chain is

@@ -18,6 +18,7 @@ pub mod contact;
 pub mod interface;
 pub mod materials;
 pub mod outcome;
+pub mod richardson;
 pub mod rigid_bottom;
 pub mod scene;
 pub mod theory;

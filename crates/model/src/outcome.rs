@@ -131,6 +131,10 @@ pub struct Outcome {
     /// The parts of that estimate.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub error_estimate: Option<ErrorEstimate>,
+    /// The chain's `e` at growing `N`, extrapolated to `N -> infinity`,
+    /// when the run was such a ladder (this outcome is then its finest run).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub extrapolation: Option<crate::richardson::Extrapolation>,
     /// Wall-clock time of the run.
     pub elapsed_seconds: f64,
 }
@@ -182,6 +186,7 @@ impl Outcome {
             truncation: None,
             error_bound: None,
             error_estimate: None,
+            extrapolation: None,
             elapsed_seconds: 0.0,
         }
     }

@@ -294,7 +294,7 @@ fn extrapolate(sizes: &[usize], chain: &[Outcome], observed: Option<f64>) -> Opt
             sizes[k - 1] as f64,
         ];
         if d1 > 0.0 && d2 > 0.0 {
-            self_consistent_order(n, d1 / d2)
+            impact_model::richardson::self_consistent_order(n, d1 / d2)
         } else {
             observed?
         }
@@ -303,30 +303,6 @@ fn extrapolate(sizes: &[usize], chain: &[Outcome], observed: Option<f64>) -> Opt
     };
     let p = p.clamp(0.25, 4.0);
     Some(e[k - 1] + (e[k - 1] - e[k - 2]) / (r.powf(p) - 1.0))
-}
-
-/// The order `p` of `e(N) = e_inf + C N^-p` through three sizes `n` whose
-/// successive differences have ratio `q = |e2 - e1| / |e3 - e2|`: the root of
-/// `(n1^-p - n2^-p) / (n2^-p - n3^-p) = q`, by bisection on `[0.25, 4]`, for
-/// any spacing of the sizes.
-fn self_consistent_order(n: [f64; 3], q: f64) -> f64 {
-    let ratio = |p: f64| (n[0].powf(-p) - n[1].powf(-p)) / (n[1].powf(-p) - n[2].powf(-p));
-    let (mut lo, mut hi) = (0.25, 4.0);
-    if q <= ratio(lo) {
-        return lo;
-    }
-    if q >= ratio(hi) {
-        return hi;
-    }
-    for _ in 0..100 {
-        let mid = 0.5 * (lo + hi);
-        if ratio(mid) < q {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
 }
 
 fn classify(p: &ComparePoint, s: &CompareSettings) -> Verdict {
@@ -454,7 +430,7 @@ mod tests {
         let sizes = [250.0, 1000.0, 2000.0];
         let e = |n: f64| 1.0 - 0.5 / n;
         let q = (e(sizes[1]) - e(sizes[0])).abs() / (e(sizes[2]) - e(sizes[1])).abs();
-        assert!((self_consistent_order(sizes, q) - 1.0).abs() < 1e-9);
+        assert!((impact_model::richardson::self_consistent_order(sizes, q) - 1.0).abs() < 1e-9);
     }
 
     #[test]

@@ -6,8 +6,10 @@
 
 pub mod grid;
 pub mod journal;
+pub mod limit;
 pub mod sweep;
 
 pub use grid::{Axis, Grid, GridError};
 pub use journal::{Journal, JournalError, JournalHeader, Shard};
+pub use limit::{ChainLimit, LimitSettings, chain_limit};
 pub use sweep::{BilayerViscosity, Engine, Row, RowFormat, sweep};

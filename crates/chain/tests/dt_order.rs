@@ -1,0 +1,114 @@
+//! The viscous chain is second order in the time step (SDIRK2 dashpots after
+//! each Beeman step, the wall dashpot switched for the part of a step in
+//! contact), and at the paper's step it is within 2e-5 of its `dt -> 0`
+//! limit on viscous bottoms, viscous tops and fully viscous rods. The limit
+//! is Richardson's from `dt / 8` and `dt / 16`, whose own error is below
+//! 1e-7 here.
+
+use impact_chain::{ChainConfig, ChainStop, simulate};
+use impact_model::{Bilayer, Layer, Rod, Scene, WallContact};
+
+const N: usize = 200;
+
+fn with_law(mut scene: Scene, law: WallContact) -> Rod {
+    scene.wall_contact = Some(law);
+    scene.validate().unwrap()
+}
+
+fn homogeneous(tau: f64, law: WallContact) -> Rod {
+    let mut layer = Layer::elastic(1.0, 1.0, 1.0);
+    layer.relaxation_time = Some(tau);
+    let scene = Scene {
+        impact_speed: 1.0,
+        layers: vec![layer],
+        wall_contact: None,
+    };
+    with_law(scene, law)
+}
+
+fn bilayer(x: f64, alpha: f64, tau: [f64; 2], law: WallContact) -> Rod {
+    let mut scene = Bilayer::new(x, alpha).unwrap().scene();
+    for (layer, tau) in scene.layers.iter_mut().zip(tau) {
+        layer.relaxation_time = (tau > 0.0).then_some(tau);
+    }
+    with_law(scene, law)
+}
+
+/// `e` at `dt_factor` times the paper's step, to the paper's horizon.
+fn e_at(rod: &Rod, dt_factor: f64) -> f64 {
+    let config = ChainConfig {
+        masses: N,
+        dt_factor,
+        stop: ChainStop::PAPER,
+        ..ChainConfig::default()
+    };
+    simulate(rod, &config).unwrap().restitution
+}
+
+/// `e` at `dt`, `dt/2`, `dt/4`, `dt/8`, `dt/16`.
+fn ladder(rod: &Rod) -> Vec<f64> {
+    (0..5).map(|k| e_at(rod, 0.5f64.powi(k))).collect()
+}
+
+#[test]
+fn second_order_and_within_2e_5_of_the_limit_at_the_paper_step() {
+    use WallContact::{Paper, Unilateral};
+    let scenes = [
+        (
+            "viscous bottom (x 0.5, alpha 0.3, tau1 0.08)",
+            bilayer(0.5, 0.3, [0.08, 0.0], Paper),
+            true,
+        ),
+        (
+            "same, unilateral wall",
+            bilayer(0.5, 0.3, [0.08, 0.0], Unilateral),
+            true,
+        ),
+        (
+            "viscous top (x 0.3, alpha 0.005, tau2 2)",
+            bilayer(0.3, 0.005, [0.0, 2.0], Paper),
+            true,
+        ),
+        (
+            "fully viscous (x 0.5, alpha 0.05, tau 0.05, 0.5)",
+            bilayer(0.5, 0.05, [0.05, 0.5], Paper),
+            true,
+        ),
+        ("homogeneous tau c/L 0.1", homogeneous(0.1, Paper), false),
+        ("homogeneous tau c/L 0.3", homogeneous(0.3, Paper), false),
+    ];
+    for (name, rod, clean) in &scenes {
+        let e = ladder(rod);
+        let limit = e[4] + (e[4] - e[3]) / 3.0;
+        let error = (e[0] - limit).abs();
+        let order = ((e[1] - e[2]) / (e[2] - e[3])).abs().log2();
+        eprintln!(
+            "{name}: e(dt) = {:.7}, limit {limit:.7}, error {error:.1e}, order {order:.2}",
+            e[0]
+        );
+        assert!(error <= 2e-5, "{name}: |e(dt) - e(0)| = {error:.2e}");
+        // where the dt error is above rounding and the contact's end
+        // jitter (the homogeneous rods: both below 1e-6), it falls as dt^2
+        // (from dt/2 to dt/8: at the paper's step the unilateral wall's
+        // release still shows, order 1.78)
+        if *clean {
+            assert!(order >= 1.8, "{name}: observed order {order:.2} in {e:?}");
+        }
+    }
+}
+
+/// The hard case: a homogeneous rod at tau c / L = 1 under the paper's law.
+/// The wall dashpot over-damps mass 0 (`c0 dt / m0 = 12.6` at `N = 200`),
+/// the rod peels off the wall slowly (`t_c = 3.4 L/c`) and `e = 0.009` is
+/// set by when `u0` creeps back to zero; the split step resolves that creep
+/// only once `c0 dt / m0 < 1`. Stated bound: `|e(dt) - e(0)| <= 1.5e-4` at
+/// the paper's step; at `dt / 32` within 3e-5 of the explicit chain of
+/// `tests/wall_law.rs` (0.009135 at `dt / 200`).
+#[test]
+fn an_overdamped_wall_is_resolved_once_the_step_resolves_it() {
+    let rod = homogeneous(1.0, WallContact::Paper);
+    let (coarse, fine) = (e_at(&rod, 1.0), e_at(&rod, 1.0 / 32.0));
+    eprintln!("e(dt) = {coarse:.7}, e(dt/32) = {fine:.7}");
+    assert!((coarse - 0.009135).abs() <= 1.5e-4, "{coarse}");
+    assert!((fine - 0.009135).abs() <= 3e-5, "{fine}");
+}

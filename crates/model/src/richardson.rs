@@ -1,0 +1,207 @@
+//! Richardson extrapolation of a quantity computed at growing sizes (the
+//! chain's `e` at `N`, `2N`, `4N`, ...), with an error estimate that says
+//! when the convergence is not clean enough to trust.
+//!
+//! With `e(N) = e_inf + C N^-p`, three sizes give `p` (whatever their
+//! spacing) and `e_inf`. The estimate is Roache's grid convergence index,
+//! `1.25 |e_3 - e_2| / (r^p - 1)`, when the last three values converge
+//! monotonically at an order in `[0.5, 3]` (and, given four or more sizes,
+//! the last two orders agree within 0.35). Otherwise the sizes are not yet
+//! asymptotic, or sharp fronts survive (an elastic layer in a chain), and
+//! the estimate widens to three times the larger of the last two changes.
+
+use serde::{Deserialize, Serialize};
+
+/// Orders outside this range are not taken as asymptotic.
+const CLEAN_ORDERS: (f64, f64) = (0.5, 3.0);
+/// Two successive observed orders differing by more than this are drifting.
+const ORDER_DRIFT: f64 = 0.35;
+/// Roache's safety factor for a three-size study with a clean order.
+const SAFETY_CLEAN: f64 = 1.25;
+/// The widened estimate: this times the larger of the last two changes.
+const SAFETY_UNCLEAR: f64 = 3.0;
+
+/// The extrapolated value of a sequence and how far it may be off.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Extrapolation {
+    /// The sizes (ascending) and the values computed at them.
+    pub sizes: Vec<usize>,
+    pub values: Vec<f64>,
+    /// Observed order `p` of `|e(N) - e_inf| ~ N^-p` from the last three
+    /// sizes, when their changes are monotone.
+    pub order: Option<f64>,
+    /// The extrapolated value (the last value where no order is observed).
+    pub value: f64,
+    /// Estimated `|value - e_inf|`.
+    pub error: f64,
+    /// Whether the convergence looks asymptotic (see the module notes).
+    pub clean: bool,
+    /// Why it is not clean, in words.
+    pub note: Option<String>,
+}
+
+/// Extrapolates `values` at ascending `sizes` (at least three of each);
+/// `sharp_fronts` marks a sequence known not to converge at a clean order,
+/// which widens the estimate whatever the numbers look like.
+pub fn extrapolate(sizes: &[usize], values: &[f64], sharp_fronts: bool) -> Option<Extrapolation> {
+    let k = values.len();
+    if k < 3 || sizes.len() != k || sizes.windows(2).any(|w| w[0] >= w[1]) {
+        return None;
+    }
+    let last = |j: usize| -> ([f64; 3], [f64; 3]) {
+        let n = [sizes[j - 2], sizes[j - 1], sizes[j]].map(|n| n as f64);
+        (n, [values[j - 2], values[j - 1], values[j]])
+    };
+    let (n, v) = last(k - 1);
+    let (d1, d2) = (v[1] - v[0], v[2] - v[1]);
+    let r = n[2] / n[1];
+    let mut out = Extrapolation {
+        sizes: sizes.to_vec(),
+        values: values.to_vec(),
+        order: None,
+        value: v[2],
+        error: 0.0,
+        clean: true,
+        note: None,
+    };
+    if d1 == 0.0 && d2 == 0.0 {
+        out.note = Some("the values do not change with size".into());
+        return Some(out);
+    }
+    let order = observed_order(n, v);
+    out.order = order;
+    let mut why: Option<String> = match order {
+        None if d1 * d2 <= 0.0 => Some("the changes alternate in sign".into()),
+        None => Some("the changes do not shrink".into()),
+        Some(p) if !(CLEAN_ORDERS.0..=CLEAN_ORDERS.1).contains(&p) => Some(format!(
+            "observed order {p:.2} is outside [{}, {}]",
+            CLEAN_ORDERS.0, CLEAN_ORDERS.1
+        )),
+        Some(p) => (k >= 4)
+            .then(|| observed_order(last(k - 2).0, last(k - 2).1))
+            .flatten()
+            .filter(|q| (p - q).abs() > ORDER_DRIFT)
+            .map(|q| format!("the observed order drifts from {q:.2} to {p:.2}")),
+    };
+    if sharp_fronts && why.is_none() {
+        why = Some("an elastic layer keeps sharp fronts, so the order in N is not clean".into());
+    }
+    if let Some(p) = order {
+        let p = p.clamp(CLEAN_ORDERS.0, CLEAN_ORDERS.1);
+        out.value = v[2] + d2 / (r.powf(p) - 1.0);
+        out.error = SAFETY_CLEAN * d2.abs() / (r.powf(p) - 1.0);
+    }
+    if why.is_some() {
+        out.clean = false;
+        out.error = out.error.max(SAFETY_UNCLEAR * d1.abs().max(d2.abs()));
+        out.note = why;
+    }
+    Some(out)
+}
+
+/// The order `p` of `e(N) = e_inf + C N^-p` through three sizes, when the
+/// changes are monotone and shrinking.
+fn observed_order(n: [f64; 3], v: [f64; 3]) -> Option<f64> {
+    let (d1, d2) = (v[1] - v[0], v[2] - v[1]);
+    (d1 * d2 > 0.0 && d2.abs() < d1.abs()).then(|| self_consistent_order(n, d1 / d2))
+}
+
+/// The order `p` of `e(N) = e_inf + C N^-p` through three sizes `n` whose
+/// successive differences have ratio `q = (e2 - e1) / (e3 - e2)`: the root
+/// of `(n1^-p - n2^-p) / (n2^-p - n3^-p) = q`, by bisection on `[0.25, 4]`,
+/// for any spacing of the sizes.
+pub fn self_consistent_order(n: [f64; 3], q: f64) -> f64 {
+    let ratio = |p: f64| (n[0].powf(-p) - n[1].powf(-p)) / (n[1].powf(-p) - n[2].powf(-p));
+    let (mut lo, mut hi) = (0.25, 4.0);
+    if q <= ratio(lo) {
+        return lo;
+    }
+    if q >= ratio(hi) {
+        return hi;
+    }
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if ratio(mid) < q {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `e(N) = 0.3 + 0.7 N^-p`: the order and the limit come back, and the
+    /// estimate covers the true error.
+    #[test]
+    fn recovers_a_clean_power_law_at_any_spacing() {
+        for p in [0.7, 1.0, 2.0] {
+            for sizes in [[100, 200, 400], [100, 300, 1000]] {
+                let v: Vec<f64> = sizes
+                    .iter()
+                    .map(|&n| 0.3 + 0.7 * (n as f64).powf(-p))
+                    .collect();
+                let x = extrapolate(&sizes, &v, false).unwrap();
+                assert!(x.clean, "{x:?}");
+                assert!((x.order.unwrap() - p).abs() < 1e-9, "{x:?}");
+                assert!((x.value - 0.3).abs() < 1e-12, "{x:?}");
+            }
+        }
+    }
+
+    /// A fast term dying out over a slow one: the estimate covers the limit.
+    #[test]
+    fn a_slow_term_under_a_fast_one_is_covered() {
+        let e = |n: f64| 0.5 + 2.0 / n + 0.05 / n.sqrt();
+        let sizes = [100, 200, 400, 800];
+        let v: Vec<f64> = sizes.iter().map(|&n| e(n as f64)).collect();
+        let x = extrapolate(&sizes, &v, false).unwrap();
+        assert!((x.value - 0.5).abs() <= x.error, "{x:?}");
+    }
+
+    /// Changes of 0.4, 0.1, 0.05: order 2, then 1. Flagged, widened.
+    #[test]
+    fn a_drifting_order_is_flagged() {
+        let x = extrapolate(&[100, 200, 400, 800], &[1.0, 0.6, 0.5, 0.45], false).unwrap();
+        assert!(!x.clean, "{x:?}");
+        assert!(
+            x.note
+                .as_deref()
+                .unwrap()
+                .contains("drifts from 2.00 to 1.00"),
+            "{x:?}"
+        );
+        assert!((x.error - 0.3).abs() < 1e-12, "{x:?}");
+    }
+
+    #[test]
+    fn alternating_changes_are_not_extrapolated() {
+        let x = extrapolate(&[100, 200, 400], &[0.5, 0.52, 0.51], false).unwrap();
+        assert!(!x.clean && x.order.is_none());
+        assert_eq!(x.value, 0.51);
+        assert!((x.error - 0.06).abs() < 1e-12);
+    }
+
+    #[test]
+    fn sharp_fronts_widen_the_estimate() {
+        let sizes = [100, 200, 400];
+        let v: Vec<f64> = sizes.iter().map(|&n| 0.3 + 1.0 / n as f64).collect();
+        let plain = extrapolate(&sizes, &v, false).unwrap();
+        let sharp = extrapolate(&sizes, &v, true).unwrap();
+        assert!(plain.clean && !sharp.clean);
+        assert!(sharp.error > plain.error);
+        assert!(sharp.note.unwrap().contains("elastic"));
+    }
+
+    #[test]
+    fn uneven_sizes_recover_the_order() {
+        // the report's regression: sizes 200, 400, 1000 at order 1
+        let sizes = [200, 400, 1000];
+        let v: Vec<f64> = sizes.iter().map(|&n| 1.0 + 3.0 / n as f64).collect();
+        let x = extrapolate(&sizes, &v, false).unwrap();
+        assert!((x.order.unwrap() - 1.0).abs() < 1e-9);
+    }
+}

@@ -1,0 +1,128 @@
+//! The chain's extrapolation to `N -> infinity` (`impact run` on a viscous
+//! scene): its estimate contains the value of much larger chains, it meets
+//! the target on the Fig. 10 materials, and it says so where the
+//! order in `N` is not clean.
+
+use impact_chain::{ChainConfig, simulate};
+use impact_model::richardson::extrapolate;
+use impact_model::{Bilayer, Layer, Rod, Scene};
+use impact_study::{LimitSettings, chain_limit};
+
+fn e_at(rod: &Rod, masses: usize) -> f64 {
+    let config = ChainConfig {
+        masses,
+        ..ChainConfig::default()
+    };
+    simulate(rod, &config).unwrap().restitution
+}
+
+/// The reference: the same chain at three large sizes, extrapolated.
+fn large_n_limit(rod: &Rod, sizes: [usize; 3]) -> (f64, f64) {
+    let values: Vec<f64> = sizes.iter().map(|&n| e_at(rod, n)).collect();
+    let x = extrapolate(&sizes, &values, false).unwrap();
+    eprintln!(
+        "reference {sizes:?}: {values:?} -> {:.7} +- {:.1e}",
+        x.value, x.error
+    );
+    (x.value, x.error)
+}
+
+fn fig10_materials() -> Rod {
+    let mut scene = Bilayer::new(0.5, 0.005).unwrap().scene();
+    scene.layers[0].restitution = Some(0.94);
+    scene.layers[1].restitution = Some(0.72);
+    scene.validate().unwrap()
+}
+
+/// Fig. 10's materials (e1 = 0.94, e2 = 0.72, alpha = 0.005) at x = 0.5:
+/// the default ladder (N = 250, 500, 1000; 0.9 s on the development
+/// machine, `cargo bench -p impact-study --bench sweep`) is within 1e-4 of
+/// the limit of chains of 1000, 2000 and 4000 masses (which itself agrees
+/// with 8000 and 16000 to 2e-6), and its estimate covers the gap.
+#[test]
+fn fig10_materials_within_1e_4_of_the_large_n_limit() {
+    let rod = fig10_materials();
+    let ladder = chain_limit(&rod, &ChainConfig::default(), &LimitSettings::default()).unwrap();
+    let x = ladder.outcome.extrapolation.unwrap();
+    let (limit, limit_error) = large_n_limit(&rod, [1000, 2000, 4000]);
+    let gap = (x.value - limit).abs();
+    eprintln!(
+        "ladder {:.7} +- {:.1e} (order {:?}); gap {gap:.1e}",
+        x.value, x.error, x.order
+    );
+    assert_eq!(x.sizes, [250, 500, 1000]);
+    assert!(gap <= 1e-4, "gap {gap}");
+    assert!(
+        gap <= x.error + limit_error,
+        "the estimate {:.1e} misses the gap {gap:.1e}",
+        x.error
+    );
+    // the chain converges at about order one here
+    assert!((0.8..1.6).contains(&x.order.unwrap()), "{x:?}");
+}
+
+/// A fully viscous homogeneous rod: the order in N is one, clean, and the
+/// ladder's interval contains the limit of chains 8 to 16 times larger.
+#[test]
+fn the_estimate_contains_the_limit_of_larger_chains() {
+    let mut layer = Layer::elastic(1.0, 1.0, 1.0);
+    layer.relaxation_time = Some(0.3);
+    let rod = Scene {
+        impact_speed: 1.0,
+        layers: vec![layer],
+        wall_contact: None,
+    }
+    .validate()
+    .unwrap();
+    let ladder = chain_limit(&rod, &ChainConfig::default(), &LimitSettings::default()).unwrap();
+    let x = ladder.outcome.extrapolation.unwrap();
+    let (limit, limit_error) = large_n_limit(&rod, [2000, 4000, 8000]);
+    let gap = (x.value - limit).abs();
+    eprintln!(
+        "ladder {:.7} +- {:.1e} (order {:?}); gap {gap:.1e}",
+        x.value, x.error, x.order
+    );
+    assert!(x.clean, "{x:?}");
+    assert!((0.9..1.1).contains(&x.order.unwrap()), "{x:?}");
+    assert!(
+        gap <= x.error + limit_error,
+        "the estimate {:.1e} misses the gap {gap:.1e}",
+        x.error
+    );
+}
+
+/// An elastic bottom under a viscous top keeps sharp fronts: the ladder
+/// says the order is not clean and widens its estimate, which still
+/// contains the limit of larger chains.
+#[test]
+fn an_elastic_layer_is_flagged_and_the_wider_estimate_holds() {
+    let mut scene = Bilayer::new(0.3, 0.005).unwrap().scene();
+    scene.layers[1].relaxation_time = Some(2.0);
+    let rod = scene.validate().unwrap();
+    let ladder = chain_limit(&rod, &ChainConfig::default(), &LimitSettings::default()).unwrap();
+    let x = ladder.outcome.extrapolation.unwrap();
+    let finest = e_at(&rod, 4000);
+    eprintln!(
+        "ladder {:.7} +- {:.1e} ({:?}); N = 4000: {finest:.7}",
+        x.value, x.error, x.note
+    );
+    assert!(!x.clean && x.note.is_some(), "{x:?}");
+    assert!((x.value - finest).abs() <= x.error, "{x:?} vs {finest}");
+}
+
+/// `--target` doubles N until the estimate is below it.
+#[test]
+fn a_target_drives_the_ladder() {
+    let rod = fig10_materials();
+    let settings = LimitSettings {
+        target: Some(1e-4),
+        max_masses: 4000,
+        ..LimitSettings::default()
+    };
+    let ladder = chain_limit(&rod, &ChainConfig::default(), &settings).unwrap();
+    let x = ladder.outcome.extrapolation.unwrap();
+    eprintln!("{x:?}");
+    assert_eq!(ladder.target_met, Some(x.error <= 1e-4));
+    assert!(x.sizes.len() > 3 || x.error <= 1e-4);
+    assert!(x.error <= 1e-4 || *x.sizes.last().unwrap() == 4000);
+}
