@@ -23,6 +23,15 @@
 //! `tests/dt_order.rs`); backward Euler, the first build's step, made the
 //! chain first order in `dt`.
 //!
+//! What the wall may do. Under the paper's law the wall pulls only through
+//! its dashpot, the `c_0` term of `D`: its work, `-c_0 v_0^2` per unit
+//! time, is never positive, so the pull dissipates and the guarantee above
+//! holds with the wall included. Under the unilateral law a step in which
+//! spring plus dashpot would pull is redone with no wall impulse at all.
+//! Under both, the mechanical energy never rises above its start at the
+//! paper's strongest dashpots (`tests/viscous.rs`, to Beeman's `O(dt^2)`
+//! wobble in the elastic parts).
+//!
 //! Both stages share `A`, and the two solves fold into one: `v' = P^-1 (M +
 //! (1 - 2g) h D) v` with `P = A M^-1 A`, symmetric positive definite and
 //! pentadiagonal, factorised once (`L D L^T`) for each wall state. A solve

@@ -222,7 +222,9 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
         Claim::new(
             "Sec. IV / Fig. 2(a): 1 - e follows (tau c/L)^(1/2)",
             "exponent 1/2, prefactor ~1",
-            format!("exponent {p:.3}, prefactor {prefactor:.2} (fit over tau c/L <= 0.05)"),
+            format!(
+                "paper's wall law: exponent {p:.3}, prefactor {prefactor:.2} (fit over tau c/L <= 0.05)"
+            ),
             (p - 0.5).abs() <= 0.05,
             "",
         ),
@@ -238,7 +240,7 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
         Claim::new(
             "Sec. IV / Fig. 2(b) inset: the unloading time t_eps grows as (tau L/c)^(1/2)",
             "exponent 1/2",
-            format!("exponent {q:.3} (fit over tau c/L <= 0.05)"),
+            format!("paper's wall law: exponent {q:.3} (fit over tau c/L <= 0.05)"),
             (q - 0.5).abs() <= 0.1,
             "",
         ),

@@ -131,6 +131,29 @@ fn verdicts_follow_the_numbers() {
     {
         assert!(!c.ours.is_empty());
     }
+    // viscous verdicts name the wall law they ran under, and none calls a
+    // sentence of the paper wrong: Sec. VII's ends are checked directly,
+    // against the paper's e1 at x -> 0 and the model's own limit at x -> 1
+    for item in items
+        .iter()
+        .filter(|i| ["fig2", "fig8-9", "fig10"].contains(&i.id.as_str()))
+    {
+        for c in &item.claims {
+            assert!(
+                c.ours.contains("paper's wall law"),
+                "{}: {}",
+                c.statement,
+                c.ours
+            );
+        }
+    }
+    for c in items.iter().flat_map(|i| &i.claims) {
+        let text = format!("{} {} {}", c.statement, c.ours, c.comment).to_lowercase();
+        assert!(!text.contains("paper is wrong"), "{text}");
+    }
+    let ends = claim("Sec. VII: the layer restitutions");
+    assert_eq!(ends.verdict, Verdict::Agrees, "{}", ends.ours);
+    assert!(ends.ours.contains("unilateral e(tau2)"), "{}", ends.ours);
     // the Fig. 11 verdict is the number it shows
     let f11 = claim("about 1% for N = 50");
     let pct: f64 = f11
