@@ -126,3 +126,45 @@ fn a_target_drives_the_ladder() {
     assert!(x.sizes.len() > 3 || x.error <= 1e-4);
     assert!(x.error <= 1e-4 || *x.sizes.last().unwrap() == 4000);
 }
+
+/// The over-damped wall (homogeneous, tau c / L = 1, paper's law), whose
+/// single chains of N = 200 carry a time-step error of 1e-4
+/// (`impact-chain`'s `tests/dt_order.rs`): that error falls as 1/N (5.6e-5,
+/// 2.8e-5, 1.6e-5 at N = 250, 500, 1000), so the continuum answer moves by
+/// less than 2e-5 between the paper's step and a step 16 times smaller.
+#[test]
+fn the_over_damped_wall_s_step_error_vanishes_from_the_continuum_answer() {
+    let mut layer = Layer::elastic(1.0, 1.0, 1.0);
+    layer.relaxation_time = Some(1.0);
+    let rod = Scene {
+        impact_speed: 1.0,
+        layers: vec![layer],
+        wall_contact: None,
+    }
+    .validate()
+    .unwrap();
+    let at = |dt_factor: f64| {
+        let config = ChainConfig {
+            dt_factor,
+            ..ChainConfig::default()
+        };
+        let ladder = chain_limit(&rod, &config, &LimitSettings::default()).unwrap();
+        ladder.outcome.extrapolation.unwrap()
+    };
+    let (paper, fine) = (at(1.0), at(1.0 / 16.0));
+    eprintln!("paper's step: {paper:?}\ndt/16: {fine:?}");
+    assert!(
+        (paper.value - fine.value).abs() <= 2e-5,
+        "{} vs {}",
+        paper.value,
+        fine.value
+    );
+    // and each chain's own step error shrinks as N grows
+    let gaps: Vec<f64> = paper
+        .values
+        .iter()
+        .zip(&fine.values)
+        .map(|(a, b)| (a - b).abs())
+        .collect();
+    assert!(gaps.windows(2).all(|w| w[1] < w[0]), "{gaps:?}");
+}
