@@ -48,7 +48,7 @@ pub fn grid_of(settings: &serde_json::Value) -> anyhow::Result<Grid> {
         let text = settings[name]
             .as_str()
             .ok_or_else(|| input(format!("journal settings lack '{name}'")))?;
-        Axis::parse(name, text).map_err(|e| input(e.to_string()))
+        Axis::parse(name, text).map_err(crate::flags::grid)
     };
     Ok(Grid {
         x: axis("x")?,
@@ -96,8 +96,8 @@ pub fn finish(
 
 pub fn compare(a: CompareArgs) -> anyhow::Result<()> {
     let grid = Grid {
-        x: Axis::parse("x", &a.x).map_err(|e| input(e.to_string()))?,
-        alpha: Axis::parse("alpha", &a.alpha).map_err(|e| input(e.to_string()))?,
+        x: Axis::parse("x", &a.x).map_err(crate::flags::grid)?,
+        alpha: Axis::parse("alpha", &a.alpha).map_err(crate::flags::grid)?,
     };
     let sizes = sizes(&a.sizes)?;
     for (name, v) in [

@@ -61,7 +61,7 @@ pub fn diagram(a: DiagramArgs) -> anyhow::Result<()> {
         let until = a
             .t_end
             .unwrap_or(3.0 * rod.transit_times().iter().sum::<f64>());
-        let run = chain_run(&rod, a.masses, until).map_err(|e| input(e.to_string()))?;
+        let run = chain_run(&rod, a.masses, until).map_err(crate::flags::chain)?;
         (
             vec![(chain_label.clone(), run.picture)],
             run.outcome,
@@ -70,7 +70,7 @@ pub fn diagram(a: DiagramArgs) -> anyhow::Result<()> {
     };
     if a.side_by_side {
         let until = a.t_end.unwrap_or(1.2 * outcome.end_time);
-        let chain = chain_run(&rod, a.masses, until).map_err(|e| input(e.to_string()))?;
+        let chain = chain_run(&rod, a.masses, until).map_err(crate::flags::chain)?;
         pictures.push((chain_label, chain.picture));
     }
     let d = Diagram {

@@ -43,7 +43,7 @@ pub fn progress(len: usize, what: &str) -> ProgressBar {
 /// The shard asked for (all points when none).
 pub fn shard(a: &JournalArgs) -> anyhow::Result<Shard> {
     a.shard.as_deref().map_or(Ok(Shard::ALL), |s| {
-        Shard::parse(s).map_err(|e| input(e.to_string()))
+        Shard::parse(s).map_err(crate::flags::journal)
     })
 }
 
@@ -66,10 +66,5 @@ pub fn open_journal<T: DeserializeOwned>(
             path.display()
         );
     }
-    Journal::open(path, header, resume).map_err(|e| match e {
-        impact_study::JournalError::Mismatch { .. } | impact_study::JournalError::Exists(_) => {
-            input(e.to_string())
-        }
-        e => anyhow::Error::new(e),
-    })
+    Journal::open(path, header, resume).map_err(crate::flags::journal)
 }

@@ -10,6 +10,7 @@ mod calibrate;
 mod compare;
 mod cost;
 mod diagram;
+mod flags;
 mod jobs;
 mod merge;
 mod output;

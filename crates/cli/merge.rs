@@ -8,9 +8,13 @@ use impact_report::ComparePoint;
 use impact_study::journal::{header, merge as join};
 use impact_study::{Row, RowFormat};
 
+/// Every journal error here is the user's to fix.
+fn input_error(e: impact_study::JournalError) -> anyhow::Error {
+    input(crate::flags::journal_message(&e))
+}
+
 pub fn merge(a: MergeArgs) -> anyhow::Result<()> {
-    let first = header(&a.journals[0]).map_err(|e| input(e.to_string()))?;
-    let input_error = |e: impact_study::JournalError| input(e.to_string());
+    let first = header(&a.journals[0]).map_err(input_error)?;
     match first.command.as_str() {
         "sweep" => {
             let (h, rows) = join::<Row>(&a.journals).map_err(input_error)?;

@@ -3,8 +3,7 @@
 use crate::args::RunArgs;
 use crate::input;
 use crate::output::{summary, write_atomically};
-use anyhow::Context;
-use impact_chain::{ChainEngine, ChainError, ChainLayout, ChainRecord};
+use impact_chain::{ChainEngine, ChainLayout, ChainRecord};
 use impact_model::Scene;
 use impact_rigid::RigidError;
 use impact_study::{Engine, LimitSettings, chain_limit};
@@ -84,7 +83,7 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
         }
         Engine::Chain(config) if limit.is_some() => {
             let settings = limit.unwrap_or_default();
-            let done = chain_limit(&rod, &config, &settings).map_err(chain_failure)?;
+            let done = chain_limit(&rod, &config, &settings).map_err(crate::flags::chain)?;
             if done.target_met == Some(false) {
                 eprintln!(
                     "warning: --target {} not met with chains up to --max-n {}: the estimate is the one below",
@@ -95,14 +94,14 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
             (done.outcome, done.recording.wall)
         }
         Engine::Chain(config) => {
-            let layout = ChainLayout::new(&rod, config.masses).map_err(|e| input(e.to_string()))?;
+            let layout = ChainLayout::new(&rod, config.masses).map_err(crate::flags::chain)?;
             for (layer, count) in layout.thin_layers() {
                 eprintln!(
                     "warning: layer {layer} has {count} masses (< 50, the paper's minimum for ~1% accuracy); raise --n"
                 );
             }
-            let mut e = ChainEngine::new(&rod, config).map_err(|e| input(e.to_string()))?;
-            let o = e.run().context("the chain could not finish")?;
+            let mut e = ChainEngine::new(&rod, config).map_err(crate::flags::chain)?;
+            let o = e.run().map_err(crate::flags::chain)?;
             (o, e.recording().wall.clone())
         }
         Engine::RigidBottom(config) => {
@@ -137,14 +136,6 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
         write!(stdout, "{}", summary(&title, &outcome))?;
     }
     Ok(())
-}
-
-/// A chain failure: settings are input errors (exit 2), the rest exit 1.
-fn chain_failure(e: ChainError) -> anyhow::Error {
-    match e {
-        ChainError::Setting { .. } | ChainError::TooFewMasses { .. } => input(e.to_string()),
-        e => anyhow::Error::new(e).context("the chain could not finish"),
-    }
 }
 
 /// An exact-engine failure as the command line reports it: settings are

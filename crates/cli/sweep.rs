@@ -11,8 +11,8 @@ use std::time::Instant;
 
 pub fn sweep(a: SweepArgs) -> anyhow::Result<()> {
     let grid = Grid {
-        x: Axis::parse("x", &a.x).map_err(|e| input(e.to_string()))?,
-        alpha: Axis::parse("alpha", &a.alpha).map_err(|e| input(e.to_string()))?,
+        x: Axis::parse("x", &a.x).map_err(crate::flags::grid)?,
+        alpha: Axis::parse("alpha", &a.alpha).map_err(crate::flags::grid)?,
     };
     let viscosity = a.viscosity.viscosity();
     // validate the viscosity once, on any point, before the long run

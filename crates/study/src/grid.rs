@@ -6,13 +6,13 @@ use thiserror::Error;
 /// A malformed axis or a grid point outside the allowed range.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum GridError {
-    #[error("--{name} must be START:STOP:STEP or a single value, with numbers (got '{text}')")]
+    #[error("{name} must be START:STOP:STEP or a single value, with numbers (got '{text}')")]
     Syntax { name: &'static str, text: String },
-    #[error("--{name} must have STEP > 0 and START <= STOP (got '{text}')")]
+    #[error("{name} must have STEP > 0 and START <= STOP (got '{text}')")]
     Order { name: &'static str, text: String },
-    #[error("--{name} spans {count} values; at most 10^7 are allowed")]
+    #[error("{name} spans {count} values; at most 10^7 are allowed")]
     TooMany { name: &'static str, count: f64 },
-    #[error("--{name} values must be numbers in (0, 1) (got {value})")]
+    #[error("{name} values must be numbers in (0, 1) (got {value})")]
     Range { name: &'static str, value: f64 },
 }
 
@@ -33,7 +33,7 @@ impl Axis {
         step: 0.005,
     };
 
-    /// Parses `START:STOP:STEP` or a single value, for the flag `--name`.
+    /// Parses `START:STOP:STEP` or a single value for the axis `name`.
     pub fn parse(name: &'static str, text: &str) -> Result<Self, GridError> {
         let syntax = || GridError::Syntax {
             name,
@@ -130,7 +130,7 @@ mod tests {
         let e = Axis::parse("alpha", "0:0.5:0.1").unwrap_err();
         assert_eq!(
             e.to_string(),
-            "--alpha values must be numbers in (0, 1) (got 0)"
+            "alpha values must be numbers in (0, 1) (got 0)"
         );
         assert!(matches!(
             Axis::parse("x", "a:b"),

@@ -18,9 +18,9 @@ use thiserror::Error;
 /// Problems with a journal, each saying what to do.
 #[derive(Debug, Error)]
 pub enum JournalError {
-    #[error("--shard must be I/N with 1 <= I <= N (got '{0}')")]
+    #[error("shard must be I/N with 1 <= I <= N (got '{0}')")]
     Shard(String),
-    #[error("{0} exists: add --resume to complete it, or remove it")]
+    #[error("{0} exists: resume it, or remove it")]
     Exists(PathBuf),
     #[error(
         "{path} was written by a different run ({what} differs): use the same settings, or another file"

@@ -1,0 +1,52 @@
+//! Library errors as the command line reports them. The engines and
+//! studies speak physics and fields; only here do their errors meet the
+//! flags that change them, and the exit codes (input errors exit 2).
+
+use crate::input;
+use impact_chain::ChainError;
+use impact_study::{GridError, JournalError};
+
+/// A malformed axis: `name` is the flag's.
+pub fn grid(e: GridError) -> anyhow::Error {
+    input(format!("--{e}"))
+}
+
+/// A chain that could not run (exit 2) or finish (exit 1), with the flags
+/// that change that.
+pub fn chain(e: ChainError) -> anyhow::Error {
+    match e {
+        ChainError::TooFewMasses { masses, layers } => input(format!(
+            "the chain needs at least one mass per layer: --n must be >= {layers} (got {masses})"
+        )),
+        ChainError::Setting { .. } => input(e.to_string()),
+        ChainError::StepLimit { .. } => anyhow::Error::new(e)
+            .context("the chain could not finish (raise --max-steps or use --horizon)"),
+        ChainError::NonFinite { .. } => {
+            anyhow::Error::new(e).context("the chain could not finish (lower --dt-factor)")
+        }
+    }
+}
+
+/// A journal's error in the command line's words.
+pub fn journal_message(e: &JournalError) -> String {
+    match e {
+        JournalError::Shard(text) => {
+            format!("--shard must be I/N with 1 <= I <= N (got '{text}')")
+        }
+        JournalError::Exists(path) => format!(
+            "{} exists: add --resume to complete it, or remove it",
+            path.display()
+        ),
+        e => e.to_string(),
+    }
+}
+
+/// A journal the user can fix (exit 2) or a failure (exit 1).
+pub fn journal(e: JournalError) -> anyhow::Error {
+    match e {
+        JournalError::Shard(_) | JournalError::Exists(_) | JournalError::Mismatch { .. } => {
+            input(journal_message(&e))
+        }
+        e => anyhow::Error::new(e),
+    }
+}
