@@ -36,9 +36,10 @@ pub fn describe(a: &CompareArgs, settings: &CompareSettings) -> serde_json::Valu
         "sizes": settings.sizes,
         "restitution_tolerance": settings.restitution_tolerance,
         "contact_time_tolerance": settings.contact_time_tolerance,
-        "wave": format!("{:?}", settings.wave),
-        "chain": format!("{:?}", impact_chain::ChainConfig { masses: 0, ..settings.chain.clone() }),
+        "wave": settings.wave,
+        "chain": impact_chain::ChainConfig { masses: 0, ..settings.chain.clone() },
         "timing": settings.timing,
+        "version": env!("CARGO_PKG_VERSION"),
     })
 }
 

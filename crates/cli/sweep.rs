@@ -41,9 +41,10 @@ pub fn sweep(a: SweepArgs) -> anyhow::Result<()> {
     let rows = if journaled {
         let settings = serde_json::json!({
             "x": a.x, "alpha": a.alpha,
-            "engine": format!("{engine:?}"),
-            "viscosity": format!("{viscosity:?}"),
+            "engine": engine,
+            "viscosity": viscosity,
             "timing": timing,
+            "version": env!("CARGO_PKG_VERSION"),
         });
         let header = JournalHeader::new("sweep", settings, points.len(), shard);
         let (journal, done) = open_journal::<Row>(&a.out, &header, a.journal.resume)?;

@@ -397,7 +397,7 @@ fn the_page_is_well_formed_and_self_contained() {
     ok(&[
         "compare",
         "--x",
-        "0.2:0.4:0.2",
+        "0.1:0.3:0.1",
         "--alpha",
         "0.3",
         "--n",
@@ -406,6 +406,17 @@ fn the_page_is_well_formed_and_self_contained() {
         out.to_str().unwrap(),
     ]);
     let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    // settings as readable JSON, never Rust Debug strings; grid values as
+    // the grid writes them
+    assert!(!html.contains("ChainConfig {") && !html.contains("WaveConfig {"));
+    assert!(html.contains("&quot;masses&quot;: 0") || html.contains("\"masses\": 0"));
+    let noisy = html
+        .split(|c: char| !(c.is_ascii_digit() || c == '.'))
+        .find(|t| t.contains('.') && (t.contains("0000000") || t.contains("9999999")));
+    assert!(
+        noisy.is_none(),
+        "a number printed with rounding noise: {noisy:?}"
+    );
     let body = html.trim_start_matches("<!DOCTYPE html>");
     let mut reader = quick_xml::Reader::from_str(body);
     let mut depth = 0i32;

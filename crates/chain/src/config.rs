@@ -1,7 +1,8 @@
 //! Numerical settings of the chain, each with the reason for its default.
 
 /// When to stop.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
 pub enum ChainStop {
     /// As soon as the chain is free and provably never touches the wall again
     /// (the discrete form of DESIGN.md §2's bound, with a 5% margin for the
@@ -16,7 +17,7 @@ impl ChainStop {
 }
 
 /// What to record besides the observables; nothing by default.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
 pub struct ChainRecord {
     /// Sample the wall strain every this many steps.
     pub wall_every: Option<u64>,
@@ -26,7 +27,7 @@ pub struct ChainRecord {
 }
 
 /// Settings of [`crate::ChainEngine`].
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct ChainConfig {
     /// Number of masses. Default `10^4`, the paper's.
     pub masses: usize,

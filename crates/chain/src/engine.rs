@@ -214,8 +214,10 @@ impl ChainEngine {
         -self.layout.stiffness[0] * u0.min(0.0)
     }
 
-    /// One step of `dt`.
-    pub fn step(&mut self) -> Result<(), ChainError> {
+    /// One step of `dt`; returns why the run stops here, if it does (the
+    /// stop rules live here, so a caller stepping by hand stops where
+    /// [`Self::run`] would). Stepping on after a stop is allowed.
+    pub fn step(&mut self) -> Result<Option<StopReason>, ChainError> {
         let dt = self.dt;
         let mut wall_impulse = 0.0;
         let u0_old = self.u[0];
@@ -251,7 +253,30 @@ impl ChainEngine {
             let mass = self.v.iter().position(|v| !v.is_finite()).unwrap_or(0);
             return Err(ChainError::NonFinite { time: self.t, mass });
         }
-        Ok(())
+        if self.stopped.is_none() {
+            self.stopped = self.stop_now();
+        }
+        Ok(self.stopped)
+    }
+
+    /// The stop rules after a step: the horizon, the escape bound, rest.
+    fn stop_now(&self) -> Option<StopReason> {
+        if self.t >= self.horizon {
+            Some(if self.history.in_contact() {
+                StopReason::HorizonInContact
+            } else {
+                StopReason::Horizon
+            })
+        } else if self
+            .escape_at
+            .is_some_and(|at| self.t >= at && !self.history.in_contact())
+        {
+            Some(StopReason::Escaped)
+        } else if self.steps.is_multiple_of(1024) && self.rests_on_wall() {
+            Some(StopReason::RestsOnWall)
+        } else {
+            None
+        }
     }
 
     /// Detects wall-spring crossings of zero, timed by linear interpolation
@@ -357,20 +382,6 @@ impl ChainEngine {
                 });
             }
             self.step()?;
-            if self.t >= self.horizon {
-                self.stopped = Some(if self.history.in_contact() {
-                    StopReason::HorizonInContact
-                } else {
-                    StopReason::Horizon
-                });
-            } else if let Some(at) = self.escape_at
-                && self.t >= at
-                && !self.history.in_contact()
-            {
-                self.stopped = Some(StopReason::Escaped);
-            } else if self.steps.is_multiple_of(1024) && self.rests_on_wall() {
-                self.stopped = Some(StopReason::RestsOnWall);
-            }
         }
         let mut o = self.outcome();
         o.elapsed_seconds = start.elapsed().as_secs_f64();

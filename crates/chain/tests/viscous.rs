@@ -129,3 +129,27 @@ fn fully_viscous_chain_loses_energy_at_every_step() {
         last = now;
     }
 }
+
+/// `step()` reports the stop where `run()` stops: same step, same outcome.
+#[test]
+fn stepping_by_hand_stops_where_run_stops() {
+    let rod = strong_dashpot_cases().remove(1).1;
+    let config = ChainConfig {
+        masses: 200,
+        ..ChainConfig::default()
+    };
+    let run = ChainEngine::new(&rod, config.clone())
+        .unwrap()
+        .run()
+        .unwrap();
+    let mut e = ChainEngine::new(&rod, config).unwrap();
+    let reason = loop {
+        if let Some(reason) = e.step().unwrap() {
+            break reason;
+        }
+    };
+    let by_hand = e.outcome();
+    assert_eq!(reason, run.stop_reason);
+    assert_eq!(by_hand.steps, run.steps);
+    assert_eq!(by_hand.restitution, run.restitution);
+}

@@ -125,14 +125,7 @@ impl Heatmap {
             svg.polyline(&pts, &colour.hex(), 1.2, "");
         }
         frame(&mut svg, &x, &y, px, py);
-        svg.text(
-            LEFT + SIZE / 2.0,
-            24.0,
-            &self.title,
-            15.0,
-            Anchor::Middle,
-            r#"font-weight="bold""#,
-        );
+        svg.title(LEFT + SIZE / 2.0, 24.0, &self.title);
         let bx = LEFT + SIZE + 25.0;
         match &self.categories {
             Some(cats) => {

@@ -114,14 +114,7 @@ impl LinePlot {
         }
         svg.raw("</g>");
         frame(&mut svg, x, y, px, py);
-        svg.text(
-            LEFT + SIZE / 2.0,
-            24.0,
-            &self.title,
-            15.0,
-            Anchor::Middle,
-            r#"font-weight="bold""#,
-        );
+        svg.title(LEFT + SIZE / 2.0, 24.0, &self.title);
         for (i, s) in self.series.iter().enumerate() {
             let yy = TOP + 12.0 + 20.0 * i as f64;
             let xx = LEFT + SIZE + 15.0;

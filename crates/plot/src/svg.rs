@@ -134,6 +134,28 @@ impl Svg {
         );
     }
 
+    /// A bold title centred on `centre` where it fits, else moved (and, if
+    /// need be, shrunk) to stay inside the canvas: a long title centred over
+    /// the plot lost its first letters at the left edge.
+    pub fn title(&mut self, centre: f64, y: f64, text: &str) {
+        const SIZE: f64 = 15.0;
+        const MARGIN: f64 = 10.0;
+        // DejaVu Sans Bold averages about 0.63 em per character
+        let width_at = |size: f64| 0.63 * size * text.chars().count() as f64;
+        let room = self.width - 2.0 * MARGIN;
+        let size = if width_at(SIZE) > room {
+            SIZE * room / width_at(SIZE)
+        } else {
+            SIZE
+        };
+        let half = width_at(size) / 2.0;
+        let x = centre.clamp(
+            MARGIN + half,
+            (self.width - MARGIN - half).max(MARGIN + half),
+        );
+        self.text(x, y, text, size, Anchor::Middle, r#"font-weight="bold""#);
+    }
+
     /// Text rotated by -90 degrees around its anchor (for vertical axis labels).
     pub fn vertical_text(&mut self, x: f64, y: f64, text: &str, size: f64) {
         let extra = format!(r#"transform="rotate(-90 {} {})""#, n(x), n(y));
@@ -157,6 +179,40 @@ impl Svg {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A title too long to centre over the plot stays inside the canvas.
+    #[test]
+    fn long_titles_stay_inside_the_canvas() {
+        let long = "Appendix C: e(x), rigid-bottom model vs exact engine at alpha = 0.001";
+        for (text, canvas) in [(long, 710.0), (long, 300.0), ("short", 710.0)] {
+            let mut svg = Svg::new(canvas, 500.0);
+            svg.title(280.0, 24.0, text);
+            let out = svg.finish();
+            let x: f64 = out
+                .split("<text x=\"")
+                .nth(1)
+                .unwrap()
+                .split('"')
+                .next()
+                .unwrap()
+                .parse()
+                .unwrap();
+            let size: f64 = out
+                .split("font-size=\"")
+                .nth(1)
+                .unwrap()
+                .split('"')
+                .next()
+                .unwrap()
+                .parse()
+                .unwrap();
+            let half = 0.63 * size * text.chars().count() as f64 / 2.0;
+            assert!(
+                x - half >= 9.9 && x + half <= canvas - 9.9,
+                "{text} at {x}, size {size}"
+            );
+        }
+    }
 
     #[test]
     fn text_is_escaped_and_numbers_are_short() {

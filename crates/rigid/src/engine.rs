@@ -16,7 +16,8 @@ use impact_model::{ContactHistory, EngineKind, ErrorEstimate, Outcome, Rod, Stop
 use thiserror::Error;
 
 /// When to stop.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
 pub enum RigidStop {
     /// When the rod is free and can provably never touch the wall again.
     Escape,
@@ -25,7 +26,7 @@ pub enum RigidStop {
 }
 
 /// Settings of the rigid-bottom model.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct RigidConfig {
     pub stop: RigidStop,
     /// A landing slower than `rest_ratio` times the speed scale of the push

@@ -77,10 +77,26 @@ impl Axis {
         ((self.stop - self.start) / self.step + 1e-9).floor() + 1.0
     }
 
-    /// The values, computed as `start + i step` (no accumulated rounding).
+    /// The values `start + i step`, as the axis writes them: when `start`
+    /// and `step` are decimals of at most 12 places, in integer multiples of
+    /// `10^-d` (so `0.005:0.995:0.005` gives `0.95`, not
+    /// `0.9500000000000001`); otherwise computed directly. Never
+    /// accumulated.
     pub fn values(&self) -> Vec<f64> {
         let n = self.count_f64() as usize;
-        (0..n).map(|i| self.start + i as f64 * self.step).collect()
+        let decimal = (0..=12).map(|d| 10f64.powi(d)).find(|scale| {
+            let whole = |v: f64| {
+                ((v * scale).round() - v * scale).abs() <= 1e-9 * (v * scale).abs().max(1.0)
+            };
+            whole(self.start) && whole(self.step)
+        });
+        match decimal {
+            Some(scale) => {
+                let (start, step) = ((self.start * scale).round(), (self.step * scale).round());
+                (0..n).map(|i| (start + i as f64 * step) / scale).collect()
+            }
+            None => (0..n).map(|i| self.start + i as f64 * self.step).collect(),
+        }
     }
 }
 
@@ -119,7 +135,15 @@ mod tests {
     fn paper_axis_has_199_values_ending_at_0_995() {
         let v = Axis::PAPER.values();
         assert_eq!(v.len(), 199);
-        assert!((v[198] - 0.995).abs() < 1e-12);
+        assert_eq!(v[198], 0.995);
+        // every value is the decimal the axis writes
+        for (i, x) in v.iter().enumerate() {
+            assert_eq!(
+                x.to_string(),
+                format!("{}", (i as f64 + 1.0) * 5.0 / 1000.0)
+            );
+            assert!(x.to_string().len() <= 5, "{x}");
+        }
         assert_eq!(Grid::paper().points().len(), 39_601);
     }
 

@@ -91,7 +91,8 @@ impl Shard {
 /// merged together.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct JournalHeader {
-    /// `"impact-journal/1"`.
+    /// `"impact-journal/2"` (2: settings as serialised JSON, with the
+    /// tool's version; 1 keyed them by Rust `Debug` strings).
     pub journal: String,
     /// `"sweep"` or `"compare"`.
     pub command: String,
@@ -105,7 +106,7 @@ pub struct JournalHeader {
 impl JournalHeader {
     pub fn new(command: &str, settings: serde_json::Value, points: usize, shard: Shard) -> Self {
         Self {
-            journal: "impact-journal/1".into(),
+            journal: "impact-journal/2".into(),
             command: command.into(),
             settings,
             points,

@@ -8,7 +8,8 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 /// The engine a sweep runs, with its validated settings.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
 pub enum Engine {
     Wave(WaveConfig),
     Chain(ChainConfig),
@@ -18,7 +19,7 @@ pub enum Engine {
 
 /// Viscosity of the two layers of a canonical bilayer, as a relaxation time
 /// `tau_i` or as the paper's layer restitution `e_i` (at most one per layer).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
 pub struct BilayerViscosity {
     pub tau: [Option<f64>; 2],
     pub restitution: [Option<f64>; 2],

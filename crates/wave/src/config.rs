@@ -2,7 +2,8 @@
 //! numerical knobs, each with the reason for its default.
 
 /// When to stop a run.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
 pub enum StopRule {
     /// Stop as soon as the rod is free and provably never touches the wall
     /// again (DESIGN.md §2): exact, and usually far earlier than the paper's
@@ -21,7 +22,7 @@ impl StopRule {
 
 /// What to record beyond the observables. Nothing is recorded by default: a
 /// plain run computes neither traces nor front paths.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
 pub struct Record {
     /// Wall strain, bottom height and velocity at every wall event.
     pub wall: bool,
@@ -30,7 +31,8 @@ pub struct Record {
 }
 
 /// How far fronts may be merged, which bounds the work of a run.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
 pub enum Resolution {
     /// Only fronts born at the same instant (within the simultaneity
     /// window) merge: the exact solution. A scene whose fronts multiply
@@ -68,7 +70,8 @@ impl Resolution {
 }
 
 /// The arithmetic of a run.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
 pub enum Precision {
     /// Double precision only; rounding is estimated a priori.
     Double,
@@ -82,7 +85,7 @@ pub enum Precision {
 }
 
 /// Numerical settings of [`crate::WaveEngine`] and [`crate::simulate`].
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct WaveConfig {
     pub stop: StopRule,
     /// A front is dropped when its velocity jump `c |d|` is below
