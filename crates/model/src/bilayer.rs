@@ -37,6 +37,31 @@ impl Bilayer {
         }
     }
 
+    /// One-way transit times `[t1, t2] = [(1 - x) / sqrt(1 - alpha),
+    /// x / sqrt(alpha)]` (unit length, density and `E1 + E2`), as the
+    /// general scene computes them:
+    /// ```
+    /// # use impact_model::Bilayer;
+    /// let b = Bilayer::new(0.3, 0.2).unwrap();
+    /// let general = b.scene().validate().unwrap().transit_times();
+    /// for (t, g) in b.transit_times().iter().zip(&general) {
+    ///     assert!((t - g).abs() < 1e-15);
+    /// }
+    /// ```
+    pub fn transit_times(&self) -> [f64; 2] {
+        [
+            (1.0 - self.x) / (1.0 - self.alpha).sqrt(),
+            self.x / self.alpha.sqrt(),
+        ]
+    }
+
+    /// The reduced contact time `t_c / (2 t1 + 2 t2)` of a rod that leaves
+    /// at `2 t1`: `t1 / (t1 + t2)`.
+    pub fn first_echo_reduced_time(&self) -> f64 {
+        let [t1, t2] = self.transit_times();
+        t1 / (t1 + t2)
+    }
+
     /// Transit-time ratio `t2 / t1 = x sqrt(1 - alpha) / ((1 - x) sqrt(alpha))`.
     pub fn transit_ratio(&self) -> f64 {
         self.x * (1.0 - self.alpha).sqrt() / ((1.0 - self.x) * self.alpha.sqrt())

@@ -244,7 +244,11 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
         &rows,
         |r| r.alpha < 0.1 && r.x < 0.25,
         |r| {
-            let t1 = (1.0 - r.x) / (1.0 - r.alpha).sqrt();
+            let [t1, _] = Bilayer {
+                x: r.x,
+                alpha: r.alpha,
+            }
+            .transit_times();
             r.contact_time
                 .is_some_and(|tc| (tc - 2.0 * t1).abs() < 1e-9)
         },

@@ -53,9 +53,11 @@ fn transition(curve: &[(f64, Outcome)]) -> f64 {
     curve
         .iter()
         .find(|(x, o)| {
-            let low = (1.0 - x)
-                / (1.0 - ALPHA).sqrt()
-                / ((1.0 - x) / (1.0 - ALPHA).sqrt() + x / ALPHA.sqrt());
+            let low = Bilayer {
+                x: *x,
+                alpha: ALPHA,
+            }
+            .first_echo_reduced_time();
             o.reduced_contact_time > 0.5 * (low + 1.0)
         })
         .map_or(f64::NAN, |(x, _)| *x)
@@ -172,11 +174,7 @@ pub fn run_8_9(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
             transitions.push((varied_bottom, *v, transition(curve)));
             // Fig. 9: 2 t1 at the smallest x, 2 t1 + 2 t2 at the largest
             let (first, last) = (&curve[0], &curve[curve.len() - 1]);
-            let low = |x: f64| {
-                (1.0 - x)
-                    / (1.0 - ALPHA).sqrt()
-                    / ((1.0 - x) / (1.0 - ALPHA).sqrt() + x / ALPHA.sqrt())
-            };
+            let low = |x: f64| Bilayer { x, alpha: ALPHA }.first_echo_reduced_time();
             curves_total += 1;
             if (first.1.reduced_contact_time - low(first.0)).abs() < 0.05 * low(first.0)
                 && (last.1.reduced_contact_time - 1.0).abs() < 0.05
@@ -187,10 +185,7 @@ pub fn run_8_9(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
         let dashed = Series::line(
             "t_c = 2 t1",
             xs.iter()
-                .map(|&x| {
-                    let t1 = (1.0 - x) / (1.0 - ALPHA).sqrt();
-                    (x, t1 / (t1 + x / ALPHA.sqrt()))
-                })
+                .map(|&x| (x, Bilayer { x, alpha: ALPHA }.first_echo_reduced_time()))
                 .collect(),
             Colour(0, 0, 0),
         )
