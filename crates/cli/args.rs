@@ -213,22 +213,15 @@ impl EngineArgs {
             })),
             (EngineChoice::Chain, _) | (EngineChoice::Auto, true) => {
                 let c = &self.chain;
-                if !(c.dt_factor.is_finite() && c.dt_factor > 0.0 && c.dt_factor <= 10.0) {
-                    return Err(input(format!(
-                        "--dt-factor must be a number in (0, 10] (got {})",
-                        c.dt_factor
-                    )));
-                }
-                if masses == 0 || c.max_steps == 0 {
-                    return Err(input("--n and --max-steps must be at least 1 (got 0)"));
-                }
-                Ok(Engine::Chain(ChainConfig {
+                let config = ChainConfig {
                     masses,
                     dt_factor: c.dt_factor,
                     stop: horizon.map_or(ChainStop::Escape, |factor| ChainStop::Horizon { factor }),
                     max_steps: c.max_steps,
                     record: chain_record,
-                }))
+                };
+                config.check().map_err(crate::flags::chain)?;
+                Ok(Engine::Chain(config))
             }
         }
     }

@@ -18,7 +18,21 @@ pub fn chain(e: ChainError) -> anyhow::Error {
         ChainError::TooFewMasses { masses, layers } => input(format!(
             "the chain needs at least one mass per layer: --n must be >= {layers} (got {masses})"
         )),
-        ChainError::Setting { .. } => input(e.to_string()),
+        ChainError::Setting {
+            field,
+            allowed,
+            value,
+        } => {
+            // the chain's fields, as the flags that set them
+            let flag = match field {
+                "dt_factor" => "dt-factor",
+                "masses" => "n",
+                "max_steps" => "max-steps",
+                "horizon" => "horizon",
+                _ => return input(e.to_string()),
+            };
+            input(format!("--{flag} must be {allowed} (got {value})"))
+        }
         ChainError::StepLimit { .. } => anyhow::Error::new(e)
             .context("the chain could not finish (raise --max-steps or use --horizon)"),
         ChainError::NonFinite { .. } => {

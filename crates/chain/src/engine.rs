@@ -64,22 +64,7 @@ pub struct ChainEngine {
 
 impl ChainEngine {
     pub fn new(rod: &Rod, config: ChainConfig) -> Result<Self, ChainError> {
-        if !(config.dt_factor.is_finite() && config.dt_factor > 0.0 && config.dt_factor <= 10.0) {
-            return Err(ChainError::Setting {
-                field: "dt_factor",
-                allowed: "a number in (0, 10]",
-                value: config.dt_factor,
-            });
-        }
-        if let ChainStop::Horizon { factor } = config.stop
-            && !(factor.is_finite() && factor > 0.0)
-        {
-            return Err(ChainError::Setting {
-                field: "horizon",
-                allowed: "a finite number > 0",
-                value: factor,
-            });
-        }
+        config.check()?;
         let layout = ChainLayout::new(rod, config.masses)?;
         let n = layout.len();
         let dt = layout.paper_time_step() * config.dt_factor;
