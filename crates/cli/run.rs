@@ -4,7 +4,7 @@ use crate::args::RunArgs;
 use crate::input;
 use crate::output::{summary, write_atomically};
 use impact_chain::{ChainEngine, ChainLayout, ChainRecord};
-use impact_model::Scene;
+use impact_model::{Scene, WallSample};
 use impact_rigid::RigidError;
 use impact_study::{Engine, LimitSettings, chain_limit};
 use impact_wave::{Record, WaveError};
@@ -68,18 +68,11 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
         max_masses: a.max_n,
         ..LimitSettings::default()
     });
-    let (outcome, wall): (_, Vec<[f64; 4]>) = match engine {
+    let (outcome, wall): (_, Vec<WallSample>) = match engine {
         Engine::Wave(config) => {
             let solution = impact_wave::solve(&rod, &config).map_err(wave_failure)?;
             let o = solution.outcome;
-            let wall = solution
-                .engine
-                .recording()
-                .wall
-                .iter()
-                .map(|s| [s.time, s.strain, s.height, s.velocity])
-                .collect();
-            (o, wall)
+            (o, solution.engine.recording().wall.clone())
         }
         Engine::Chain(config) if limit.is_some() => {
             let settings = limit.unwrap_or_default();
@@ -124,7 +117,7 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
         write_atomically(path, |w| {
             writeln!(w, "time,strain,height,velocity")?;
             for s in &wall {
-                writeln!(w, "{},{},{},{}", s[0], s[1], s[2], s[3])?;
+                writeln!(w, "{},{},{},{}", s.time, s.strain, s.height, s.velocity)?;
             }
             Ok(())
         })?;

@@ -4,7 +4,7 @@ use crate::config::{ChainConfig, ChainStop};
 use crate::damping::Dashpots;
 use crate::error::ChainError;
 use crate::layout::ChainLayout;
-use impact_model::{ContactHistory, EngineKind, Outcome, Rod, StopReason, WallContact};
+use impact_model::{ContactHistory, EngineKind, Outcome, Rod, StopReason, WallContact, WallSample};
 use serde::Serialize;
 use std::time::Instant;
 
@@ -19,8 +19,8 @@ pub struct RasterFrame {
 /// What the chain recorded (only what the config asked for).
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct ChainRecording {
-    /// `(time, wall strain, bottom height, bottom velocity)` samples.
-    pub wall: Vec<[f64; 4]>,
+    /// Wall samples (the same type as the exact engine's).
+    pub wall: Vec<WallSample>,
     pub raster: Vec<RasterFrame>,
 }
 
@@ -310,12 +310,12 @@ impl ChainEngine {
             && self.steps.is_multiple_of(every.max(1))
         {
             let u0 = self.u[0];
-            self.recording.wall.push([
-                self.t,
-                u0.min(0.0) / self.layout.rest_length[0],
-                u0.max(0.0),
-                self.v[0],
-            ]);
+            self.recording.wall.push(WallSample {
+                time: self.t,
+                strain: u0.min(0.0) / self.layout.rest_length[0],
+                height: u0.max(0.0),
+                velocity: self.v[0],
+            });
         }
         if let Some((every, rows)) = rec.raster
             && self.steps.is_multiple_of(every.max(1))

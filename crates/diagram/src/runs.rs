@@ -67,7 +67,12 @@ pub fn chain_run(rod: &Rod, masses: usize, until: f64) -> Result<Run, ChainError
     };
     let mut e = ChainEngine::new(rod, config)?;
     let outcome = e.run()?;
-    let wall = e.recording().wall.iter().map(|s| (s[0], s[1])).collect();
+    let wall = e
+        .recording()
+        .wall
+        .iter()
+        .map(|s| (s.time, s.strain))
+        .collect();
     Ok(Run {
         picture: Picture::Chain(ChainPicture {
             frames: e.recording().raster.clone(),

@@ -24,6 +24,7 @@ pub mod scene;
 pub mod theory;
 pub mod units;
 pub mod wall_contact;
+pub mod wall_sample;
 
 pub use bilayer::Bilayer;
 pub use contact::ContactHistory;
@@ -32,3 +33,4 @@ pub use outcome::{EngineKind, ErrorEstimate, Outcome, StopReason, Truncation};
 pub use scene::{Layer, LayerProps, Rod, Scene, SceneError};
 pub use units::Units;
 pub use wall_contact::WallContact;
+pub use wall_sample::WallSample;

@@ -40,7 +40,12 @@ fn run_one(tau: f64, masses: usize, law: WallContact) -> Result<Run, PaperError>
     };
     let mut e = ChainEngine::new(&rod, config).map_err(|e| PaperError::Engine(e.to_string()))?;
     let o = e.run().map_err(|e| PaperError::Engine(e.to_string()))?;
-    let wall: Vec<(f64, f64)> = e.recording().wall.iter().map(|s| (s[0], s[1])).collect();
+    let wall: Vec<(f64, f64)> = e
+        .recording()
+        .wall
+        .iter()
+        .map(|s| (s.time, s.strain))
+        .collect();
     // last time eps0 <= -1/2 (units v_b / c) before the final takeoff
     let half = wall
         .iter()

@@ -4,17 +4,7 @@
 use crate::lane::Direction;
 use serde::Serialize;
 
-/// The wall state just after a wall event.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct WallSample {
-    pub time: f64,
-    /// Wall strain `eps0` (zero when free).
-    pub strain: f64,
-    /// Bottom height above the wall.
-    pub height: f64,
-    /// Bottom velocity (positive upward).
-    pub velocity: f64,
-}
+pub use impact_model::WallSample;
 
 /// The path of one front, from birth to arrival, and where it came from.
 #[derive(Debug, Clone, PartialEq, Serialize)]
