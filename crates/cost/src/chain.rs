@@ -7,16 +7,41 @@ use impact_model::richardson::extrapolate;
 use serde::Serialize;
 use std::time::Instant;
 
+/// Which rod the chain ran: the elastic point, or its viscous variant.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ChainKind {
+    Elastic,
+    Viscous,
+}
+
+impl std::fmt::Display for ChainKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Self::Elastic => "elastic",
+            Self::Viscous => "viscous",
+        })
+    }
+}
+
+/// What a chain row varied.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ChainStudy {
+    /// `N` varied at the paper's step.
+    Masses,
+    /// The step varied at fixed `N`.
+    TimeStep,
+    /// Three successive sizes of the `N` study, Richardson-extrapolated:
+    /// `masses` is the largest, the time and work are the three runs'.
+    Extrapolated,
+}
+
 /// One setting of the chain at one point.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ChainCost {
-    /// `"elastic"` or `"viscous"`.
-    pub kind: String,
-    /// `"masses"` (N varied at the paper's step), `"time_step"` (the step
-    /// varied at fixed N) or `"extrapolated"` (three successive sizes of the
-    /// N study, Richardson-extrapolated: `masses` is the largest, the time
-    /// and work are the three runs').
-    pub study: String,
+    pub kind: ChainKind,
+    pub study: ChainStudy,
     pub masses: usize,
     pub dt_factor: f64,
     pub restitution: f64,
@@ -50,7 +75,7 @@ fn run(
 /// The N study then the dt study, against `reference` (or, if `None`, the
 /// Richardson limit of the N study's three largest sizes).
 pub fn chain_study(
-    kind: &str,
+    kind: ChainKind,
     rod: &Rod,
     reference: Option<f64>,
     s: &CostSettings,
@@ -71,8 +96,12 @@ pub fn chain_study(
         .iter()
         .enumerate()
         .map(|(i, &(masses, dt_factor, e, seconds, steps))| ChainCost {
-            kind: kind.to_string(),
-            study: if i < n_study { "masses" } else { "time_step" }.to_string(),
+            kind,
+            study: if i < n_study {
+                ChainStudy::Masses
+            } else {
+                ChainStudy::TimeStep
+            },
             masses,
             dt_factor,
             restitution: e,
@@ -104,7 +133,11 @@ fn limit_of(runs: &[(usize, f64, f64, f64, u64)]) -> f64 {
 /// What `impact run` does on a viscous scene, at every rung of the N study:
 /// three successive sizes extrapolated, costing the three runs together.
 /// The last triple defines the limit, so it is left out.
-fn extrapolated(kind: &str, runs: &[(usize, f64, f64, f64, u64)], limit: f64) -> Vec<ChainCost> {
+fn extrapolated(
+    kind: ChainKind,
+    runs: &[(usize, f64, f64, f64, u64)],
+    limit: f64,
+) -> Vec<ChainCost> {
     let k = runs.len();
     (2..k.saturating_sub(1))
         .filter_map(|j| {
@@ -113,8 +146,8 @@ fn extrapolated(kind: &str, runs: &[(usize, f64, f64, f64, u64)], limit: f64) ->
             let values: Vec<f64> = triple.iter().map(|r| r.2).collect();
             let x = extrapolate(&sizes, &values, false)?;
             Some(ChainCost {
-                kind: kind.to_string(),
-                study: "extrapolated".to_string(),
+                kind,
+                study: ChainStudy::Extrapolated,
                 masses: sizes[2],
                 dt_factor: 1.0,
                 restitution: x.value,

@@ -10,7 +10,7 @@ mod exact;
 mod growth;
 mod report;
 
-pub use chain::{ChainCost, Headline, chain_study, headline};
+pub use chain::{ChainCost, ChainKind, ChainStudy, Headline, chain_study, headline};
 pub use exact::{ExactCost, exact_study};
 pub use growth::{Growth, growth_study};
 pub use report::{CostReport, write_report};
@@ -110,14 +110,14 @@ pub fn cost_study(
     }
     let (_, reference) = exact_reference(rod)?;
     progress("chain, elastic: N and time step");
-    let (mut chain, _) = chain_study("elastic", rod, Some(reference.restitution), s)?;
+    let (mut chain, _) = chain_study(ChainKind::Elastic, rod, Some(reference.restitution), s)?;
     progress("chain, viscous: N and time step");
     let mut viscous_scene = rod.scene().clone();
     if let Some(top) = viscous_scene.layers.last_mut() {
         top.restitution = Some(s.viscous_e2);
     }
     let viscous_rod = viscous_scene.validate().map_err(engine)?;
-    let (viscous, limit) = chain_study("viscous", &viscous_rod, None, s)?;
+    let (viscous, limit) = chain_study(ChainKind::Viscous, &viscous_rod, None, s)?;
     chain.extend(viscous);
     progress("exact engine: growth with t2/t1 and alpha");
     let growth = growth_study()?;

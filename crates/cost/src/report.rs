@@ -1,7 +1,7 @@
 //! The cost report: tables, the Pareto plot, growth plots, and a page.
 
 use crate::CostError;
-use crate::chain::{ChainCost, Headline};
+use crate::chain::{ChainCost, ChainKind, ChainStudy, Headline};
 use crate::exact::ExactCost;
 use crate::growth::Growth;
 use impact_plot::{Axis, Colour, LinePlot, Marker, Scale, Series, escape, write_svg_and_png};
@@ -76,7 +76,7 @@ impl CostReport {
     ) -> Self {
         let n_study: Vec<&ChainCost> = chain
             .iter()
-            .filter(|c| c.kind == "elastic" && c.study == "masses")
+            .filter(|c| c.kind == ChainKind::Elastic && c.study == ChainStudy::Masses)
             .collect();
         let chain_time_exponent = slope(
             &n_study
@@ -106,7 +106,7 @@ impl CostReport {
             .collect();
         let chain_pts: Vec<(f64, f64, String)> = chain
             .iter()
-            .filter(|c| c.kind == "elastic")
+            .filter(|c| c.kind == ChainKind::Elastic)
             .map(|c| {
                 (
                     c.seconds,
@@ -198,25 +198,25 @@ pub fn write_report(dir: &Path, r: &CostReport) -> Result<(), CostError> {
         .collect();
     let mut chain_n = Series::markers(
         "chain, N varied (elastic)",
-        mine(&|c| c.kind == "elastic" && c.study == "masses"),
+        mine(&|c| c.kind == ChainKind::Elastic && c.study == ChainStudy::Masses),
         red,
     );
     chain_n.line = true;
     let mut chain_dt = Series::markers(
         "chain, dt varied (elastic)",
-        mine(&|c| c.kind == "elastic" && c.study == "time_step"),
+        mine(&|c| c.kind == ChainKind::Elastic && c.study == ChainStudy::TimeStep),
         orange,
     );
     chain_dt.marker = Marker::Square;
     let mut viscous = Series::markers(
         "chain, N varied (viscous)",
-        mine(&|c| c.kind == "viscous" && c.study == "masses"),
+        mine(&|c| c.kind == ChainKind::Viscous && c.study == ChainStudy::Masses),
         green,
     );
     viscous.line = true;
     let mut extrapolated = Series::markers(
         "chain, extrapolated (viscous)",
-        mine(&|c| c.kind == "viscous" && c.study == "extrapolated"),
+        mine(&|c| c.kind == ChainKind::Viscous && c.study == ChainStudy::Extrapolated),
         Colour(118, 42, 131),
     );
     extrapolated.line = true;
@@ -307,7 +307,7 @@ pub fn write_report(dir: &Path, r: &CostReport) -> Result<(), CostError> {
     let n_rows: Vec<&ChainCost> = r
         .chain
         .iter()
-        .filter(|c| c.kind == "elastic" && c.study == "masses")
+        .filter(|c| c.kind == ChainKind::Elastic && c.study == ChainStudy::Masses)
         .collect();
     let growth = LinePlot {
         title: format!(

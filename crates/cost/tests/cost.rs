@@ -1,7 +1,7 @@
 //! The cost study on a cheap point: it runs end to end, errors fall as each
 //! setting tightens, and the Pareto front is monotone. No timing is asserted.
 
-use impact_cost::{CostSettings, cost_study, write_report};
+use impact_cost::{ChainKind, ChainStudy, CostSettings, cost_study, write_report};
 use impact_model::Bilayer;
 
 #[test]
@@ -14,7 +14,7 @@ fn the_cost_study_runs_and_its_errors_fall_as_settings_tighten() {
     let n: Vec<_> = r
         .chain
         .iter()
-        .filter(|c| c.kind == "elastic" && c.study == "masses")
+        .filter(|c| c.kind == ChainKind::Elastic && c.study == ChainStudy::Masses)
         .collect();
     assert_eq!(n.len(), s.sizes.len());
     for w in n.windows(2) {
@@ -37,7 +37,7 @@ fn the_cost_study_runs_and_its_errors_fall_as_settings_tighten() {
     let v: Vec<_> = r
         .chain
         .iter()
-        .filter(|c| c.kind == "viscous" && c.study == "masses")
+        .filter(|c| c.kind == ChainKind::Viscous && c.study == ChainStudy::Masses)
         .collect();
     assert!(
         r.viscous_limit.is_finite()
@@ -47,7 +47,7 @@ fn the_cost_study_runs_and_its_errors_fall_as_settings_tighten() {
     let dt: Vec<_> = r
         .chain
         .iter()
-        .filter(|c| c.kind == "elastic" && c.study == "time_step")
+        .filter(|c| c.kind == ChainKind::Elastic && c.study == ChainStudy::TimeStep)
         .collect();
     assert_eq!(dt.len(), s.dt_factors.len());
     let mut by_dt: Vec<_> = dt.iter().map(|c| (c.dt_factor, c.steps)).collect();

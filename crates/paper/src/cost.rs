@@ -3,7 +3,7 @@
 
 use crate::claim::{Claim, Item, power_fit};
 use crate::{PaperError, Settings};
-use impact_cost::{CostSettings, cost_study, write_report};
+use impact_cost::{ChainKind, ChainStudy, CostSettings, cost_study, write_report};
 use impact_model::Bilayer;
 use std::path::Path;
 
@@ -23,7 +23,7 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
     let n_study: Vec<(f64, f64)> = r
         .chain
         .iter()
-        .filter(|c| c.kind == "elastic" && c.study == "masses")
+        .filter(|c| c.kind == ChainKind::Elastic && c.study == ChainStudy::Masses)
         .map(|c| (c.masses as f64, c.restitution_error))
         .collect();
     let (p, c) = power_fit(&n_study);
