@@ -5,34 +5,13 @@
 //! is Richardson's from `dt / 8` and `dt / 16`, whose own error is below
 //! 1e-7 here.
 
+mod common;
+
+use common::{homogeneous_under as homogeneous, viscous_bilayer as bilayer};
 use impact_chain::{ChainConfig, ChainStop, simulate};
-use impact_model::{Bilayer, Layer, Rod, Scene, WallContact};
+use impact_model::{Rod, WallContact};
 
 const N: usize = 200;
-
-fn with_law(mut scene: Scene, law: WallContact) -> Rod {
-    scene.wall_contact = Some(law);
-    scene.validate().unwrap()
-}
-
-fn homogeneous(tau: f64, law: WallContact) -> Rod {
-    let mut layer = Layer::elastic(1.0, 1.0, 1.0);
-    layer.relaxation_time = Some(tau);
-    let scene = Scene {
-        impact_speed: 1.0,
-        layers: vec![layer],
-        wall_contact: None,
-    };
-    with_law(scene, law)
-}
-
-fn bilayer(x: f64, alpha: f64, tau: [f64; 2], law: WallContact) -> Rod {
-    let mut scene = Bilayer::new(x, alpha).unwrap().scene();
-    for (layer, tau) in scene.layers.iter_mut().zip(tau) {
-        layer.relaxation_time = (tau > 0.0).then_some(tau);
-    }
-    with_law(scene, law)
-}
 
 /// `e` at `dt_factor` times the paper's step, to the paper's horizon.
 fn e_at(rod: &Rod, dt_factor: f64) -> f64 {

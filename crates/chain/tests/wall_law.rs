@@ -6,8 +6,11 @@
 //! dashpot constants) with the engine, not its splitting, implicit solve or
 //! wall bookkeeping.
 
+mod common;
+
+use common::{homogeneous_under as homogeneous, viscous_bilayer as bilayer, with_law};
 use impact_chain::{ChainConfig, ChainLayout, ChainStop, simulate};
-use impact_model::{Bilayer, Layer, Rod, Scene, WallContact};
+use impact_model::{Bilayer, Rod, WallContact};
 
 /// Both chains stop at `HORIZON` times the sum of the transit times: the
 /// contact of every scene here ends before twice that sum, and a landing
@@ -87,32 +90,6 @@ fn engine(rod: &Rod, n: usize, dt_factor: f64) -> f64 {
 
 /// A scene under a given wall law.
 type RodOf = fn(WallContact) -> Rod;
-
-fn with_law(mut scene: Scene, law: WallContact) -> Rod {
-    scene.wall_contact = Some(law);
-    scene.validate().unwrap()
-}
-
-fn homogeneous(tau: f64, law: WallContact) -> Rod {
-    let mut layer = Layer::elastic(1.0, 1.0, 1.0);
-    layer.relaxation_time = Some(tau);
-    with_law(
-        Scene {
-            impact_speed: 1.0,
-            layers: vec![layer],
-            wall_contact: None,
-        },
-        law,
-    )
-}
-
-fn bilayer(x: f64, alpha: f64, tau: [f64; 2], law: WallContact) -> Rod {
-    let mut scene = Bilayer::new(x, alpha).unwrap().scene();
-    for (layer, tau) in scene.layers.iter_mut().zip(tau) {
-        layer.relaxation_time = (tau > 0.0).then_some(tau);
-    }
-    with_law(scene, law)
-}
 
 /// Both laws, on the five scenes, at `N = 200`: the engine at the
 /// paper's step agrees with the explicit oracle at `dt / 200` to 3e-5; the

@@ -13,6 +13,7 @@
 //! touches the wall, unit cross-section, strain is positive in tension.
 
 pub mod bilayer;
+pub mod bisect;
 pub mod calibration;
 pub mod contact;
 pub mod interface;

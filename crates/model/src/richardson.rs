@@ -112,22 +112,14 @@ fn observed_order(n: [f64; 3], v: [f64; 3]) -> Option<f64> {
 /// for any spacing of the sizes.
 pub fn self_consistent_order(n: [f64; 3], q: f64) -> f64 {
     let ratio = |p: f64| (n[0].powf(-p) - n[1].powf(-p)) / (n[1].powf(-p) - n[2].powf(-p));
-    let (mut lo, mut hi) = (0.25, 4.0);
+    let (lo, hi) = (0.25, 4.0);
     if q <= ratio(lo) {
         return lo;
     }
     if q >= ratio(hi) {
         return hi;
     }
-    for _ in 0..100 {
-        let mid = 0.5 * (lo + hi);
-        if ratio(mid) < q {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
+    crate::bisect::bisect(lo, hi, 100, |p| ratio(p) < q)
 }
 
 #[cfg(test)]

@@ -172,17 +172,10 @@ pub fn wall_strain_after_first_return(alpha: f64) -> f64 {
 /// assert!((upper_boundary_alpha() - 0.82).abs() < 0.01);
 /// ```
 pub fn upper_boundary_alpha() -> f64 {
-    let (mut lo, mut hi) = (0.5, 0.999_999);
     // f(lo) < 0 < f(hi): the strain is tensile below the root.
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if wall_strain_after_first_return(mid) < 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
+    crate::bisect::bisect(0.5, 0.999_999, 200, |a| {
+        wall_strain_after_first_return(a) < 0.0
+    })
 }
 
 #[cfg(test)]

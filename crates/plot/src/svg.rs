@@ -188,24 +188,12 @@ mod tests {
             let mut svg = Svg::new(canvas, 500.0);
             svg.title(280.0, 24.0, text);
             let out = svg.finish();
-            let x: f64 = out
-                .split("<text x=\"")
-                .nth(1)
-                .unwrap()
-                .split('"')
-                .next()
-                .unwrap()
-                .parse()
-                .unwrap();
-            let size: f64 = out
-                .split("font-size=\"")
-                .nth(1)
-                .unwrap()
-                .split('"')
-                .next()
-                .unwrap()
-                .parse()
-                .unwrap();
+            let attribute = |name: &str| -> f64 {
+                let open = format!("{name}=\"");
+                let value = out.split(open.as_str()).nth(1).unwrap();
+                value.split('"').next().unwrap().parse().unwrap()
+            };
+            let (x, size) = (attribute("<text x"), attribute("font-size"));
             let half = 0.63 * size * text.chars().count() as f64 / 2.0;
             assert!(
                 x - half >= 9.9 && x + half <= canvas - 9.9,

@@ -27,6 +27,18 @@ fn large_n_limit(rod: &Rod, sizes: [usize; 3]) -> (f64, f64) {
     (x.value, x.error)
 }
 
+/// A homogeneous Kelvin-Voigt rod of `tau c / L = tau` (paper's wall law).
+fn homogeneous(tau: f64) -> Rod {
+    let mut layer = Layer::elastic(1.0, 1.0, 1.0);
+    layer.relaxation_time = Some(tau);
+    let scene = Scene {
+        impact_speed: 1.0,
+        layers: vec![layer],
+        wall_contact: None,
+    };
+    scene.validate().unwrap()
+}
+
 fn fig10_materials() -> Rod {
     let mut scene = Bilayer::new(0.5, 0.005).unwrap().scene();
     scene.layers[0].restitution = Some(0.94);
@@ -65,15 +77,7 @@ fn fig10_materials_within_1e_4_of_the_large_n_limit() {
 /// ladder's interval contains the limit of chains 8 to 16 times larger.
 #[test]
 fn the_estimate_contains_the_limit_of_larger_chains() {
-    let mut layer = Layer::elastic(1.0, 1.0, 1.0);
-    layer.relaxation_time = Some(0.3);
-    let rod = Scene {
-        impact_speed: 1.0,
-        layers: vec![layer],
-        wall_contact: None,
-    }
-    .validate()
-    .unwrap();
+    let rod = homogeneous(0.3);
     let ladder = chain_limit(&rod, &ChainConfig::default(), &LimitSettings::default()).unwrap();
     let x = ladder.outcome.extrapolation.unwrap();
     let (limit, limit_error) = large_n_limit(&rod, [2000, 4000, 8000]);
@@ -134,15 +138,7 @@ fn a_target_drives_the_ladder() {
 /// less than 2e-5 between the paper's step and a step 16 times smaller.
 #[test]
 fn the_over_damped_wall_s_step_error_vanishes_from_the_continuum_answer() {
-    let mut layer = Layer::elastic(1.0, 1.0, 1.0);
-    layer.relaxation_time = Some(1.0);
-    let rod = Scene {
-        impact_speed: 1.0,
-        layers: vec![layer],
-        wall_contact: None,
-    }
-    .validate()
-    .unwrap();
+    let rod = homogeneous(1.0);
     let at = |dt_factor: f64| {
         let config = ChainConfig {
             dt_factor,

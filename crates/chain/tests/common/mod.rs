@@ -1,6 +1,6 @@
 #![allow(dead_code)]
 use impact_chain::{ChainConfig, simulate};
-use impact_model::{Bilayer, Layer, Outcome, Rod, Scene};
+use impact_model::{Bilayer, Layer, Outcome, Rod, Scene, WallContact};
 
 pub fn bilayer(x: f64, alpha: f64) -> Rod {
     Bilayer::new(x, alpha).unwrap().scene().validate().unwrap()
@@ -16,6 +16,29 @@ pub fn homogeneous(tau_c_over_l: f64) -> Rod {
     }
     .validate()
     .unwrap()
+}
+
+/// `scene` under the wall law `law`.
+pub fn with_law(mut scene: Scene, law: WallContact) -> Rod {
+    scene.wall_contact = Some(law);
+    scene.validate().unwrap()
+}
+
+/// The homogeneous viscous rod of `tau c / L = tau` under `law`.
+pub fn homogeneous_under(tau: f64, law: WallContact) -> Rod {
+    let mut scene = homogeneous(tau).scene().clone();
+    scene.wall_contact = Some(law);
+    scene.validate().unwrap()
+}
+
+/// The canonical bilayer with relaxation times `tau` (0: elastic) under
+/// `law`.
+pub fn viscous_bilayer(x: f64, alpha: f64, tau: [f64; 2], law: WallContact) -> Rod {
+    let mut scene = Bilayer::new(x, alpha).unwrap().scene();
+    for (layer, tau) in scene.layers.iter_mut().zip(tau) {
+        layer.relaxation_time = (tau > 0.0).then_some(tau);
+    }
+    with_law(scene, law)
 }
 
 pub fn chain(rod: &Rod, masses: usize) -> Outcome {
