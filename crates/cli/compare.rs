@@ -2,13 +2,12 @@
 
 use crate::args::CompareArgs;
 use crate::input;
-use crate::jobs::{open_journal, progress, shard, threads};
+use crate::jobs::{run_journaled, shard, threads};
 use impact_chain::ChainRecord;
 use impact_report::write::ReportGrid;
 use impact_report::{ComparePoint, CompareSettings, compare_point, write_report};
-use impact_study::{Axis, Engine, Grid, JournalHeader, Shard};
+use impact_study::{Axis, Engine, Grid, JournalHeader, JournalPlan, Shard};
 use impact_wave::Record;
-use rayon::prelude::*;
 use std::path::PathBuf;
 
 /// Parses `--n 250,500,1000` into increasing sizes.
@@ -145,37 +144,25 @@ pub fn compare(a: CompareArgs) -> anyhow::Result<()> {
             shard.index, shard.count
         ))
     };
-    let header = JournalHeader::new("compare", described.clone(), points.len(), shard);
-    let (journal, done) = open_journal::<ComparePoint>(&journal_path, &header, a.journal.resume)?;
-    let todo: Vec<usize> = (0..points.len())
-        .filter(|&k| shard.contains(k) && !done.contains_key(&k))
-        .collect();
-    let bar = progress(todo.len(), "points");
-    let fresh: Vec<(usize, ComparePoint)> = todo
-        .par_iter()
-        .map(|&k| {
-            let p = compare_point(points[k], &settings);
-            let written = journal.append(k, &p);
-            bar.inc(1);
-            written.map(|()| (k, p))
-        })
-        .collect::<Result<_, _>>()?;
-    bar.finish_and_clear();
+    let plan = JournalPlan {
+        path: &journal_path,
+        header: JournalHeader::new("compare", described.clone(), points.len(), shard),
+        resume: a.journal.resume,
+    };
+    let done = run_journaled(&points, &plan, |_, &p| compare_point(p, &settings))?;
     if shard != Shard::ALL {
         eprintln!(
             "shard {}/{}: {} points ({} resumed) in {}; join the shards with `impact merge {}/points-shard-*-of-{}.jsonl --out DIR`",
             shard.index,
             shard.count,
-            done.len() + fresh.len(),
-            done.len(),
+            done.resumed.len() + done.fresh.len(),
+            done.resumed.len(),
             journal_path.display(),
             a.out.display(),
             shard.count
         );
         return Ok(());
     }
-    let mut all = done;
-    all.extend(fresh);
-    let ordered: Vec<ComparePoint> = all.into_values().collect();
+    let ordered: Vec<ComparePoint> = done.into_rows().into_values().collect();
     finish(&a.out, &described, &grid, &ordered, a.fail_above)
 }

@@ -3,12 +3,11 @@
 
 use crate::args::JournalArgs;
 use crate::input;
-use impact_study::{Journal, JournalHeader, Shard};
+use impact_study::{Finished, JournalPlan, Progress, Shard};
 use indicatif::{ProgressBar, ProgressStyle};
+use serde::Serialize;
 use serde::de::DeserializeOwned;
-use std::collections::BTreeMap;
 use std::io::IsTerminal;
-use std::path::Path;
 
 /// Sets the number of worker threads (once per process).
 pub fn threads(n: Option<usize>) -> anyhow::Result<()> {
@@ -47,24 +46,55 @@ pub fn shard(a: &JournalArgs) -> anyhow::Result<Shard> {
     })
 }
 
-/// Opens the journal at `path`: resumed with `--resume`. Without it an
-/// unsharded run starts afresh, but a shard's journal is never deleted: the
-/// run stops and says to add `--resume` (hours of points may be in it). A
-/// file cut before its header line ends is just started again.
-pub fn open_journal<T: DeserializeOwned>(
-    path: &Path,
-    header: &JournalHeader,
-    resume: bool,
-) -> anyhow::Result<(Journal, BTreeMap<usize, T>)> {
-    let torn_header = path.exists() && !std::fs::read(path)?.contains(&b'\n');
-    if torn_header || (!resume && path.exists() && header.shard == impact_study::Shard::ALL) {
-        std::fs::remove_file(path)?;
+/// A progress bar drawn for the study runner: made when the runner says how
+/// many points will run, cleared when dropped.
+pub struct Bar {
+    what: &'static str,
+    bar: std::sync::OnceLock<ProgressBar>,
+}
+
+impl Bar {
+    pub fn new(what: &'static str) -> Self {
+        Self {
+            what,
+            bar: std::sync::OnceLock::new(),
+        }
     }
-    if resume && !path.exists() {
+}
+
+impl Progress for Bar {
+    fn start(&self, points: usize) {
+        let _ = self.bar.set(progress(points, self.what));
+    }
+    fn finished_one(&self) {
+        if let Some(bar) = self.bar.get() {
+            bar.inc(1);
+        }
+    }
+}
+
+impl Drop for Bar {
+    fn drop(&mut self) {
+        if let Some(bar) = self.bar.get() {
+            bar.finish_and_clear();
+        }
+    }
+}
+
+/// Runs the points of a journaled command through the study runner and says
+/// when `--resume` found no journal to resume.
+pub fn run_journaled<P: Sync, T: Serialize + DeserializeOwned + Send>(
+    points: &[P],
+    plan: &JournalPlan,
+    work: impl Fn(usize, &P) -> T + Sync,
+) -> anyhow::Result<Finished<T>> {
+    let finished = impact_study::run_journaled(points, plan, &Bar::new("points"), work)
+        .map_err(crate::flags::journal)?;
+    if finished.started_afresh {
         eprintln!(
             "note: {} does not exist yet: starting from the beginning",
-            path.display()
+            plan.path.display()
         );
     }
-    Journal::open(path, header, resume).map_err(crate::flags::journal)
+    Ok(finished)
 }

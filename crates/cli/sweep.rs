@@ -2,10 +2,10 @@
 
 use crate::args::SweepArgs;
 use crate::input;
-use crate::jobs::{open_journal, progress, shard, threads};
+use crate::jobs::{Bar, run_journaled, shard, threads};
 use crate::output::write_atomically;
 use impact_chain::ChainRecord;
-use impact_study::{Axis, Grid, JournalHeader, Row, RowFormat, Shard};
+use impact_study::{Axis, Grid, JournalHeader, JournalPlan, Row, RowFormat, Shard, par_map};
 use impact_wave::Record;
 use std::time::Instant;
 
@@ -35,8 +35,8 @@ pub fn sweep(a: SweepArgs) -> anyhow::Result<()> {
     }
     threads(a.threads)?;
     let timing = !a.no_timing;
-    let points: Vec<(usize, impact_model::Bilayer)> =
-        grid.points().into_iter().enumerate().collect();
+    let points = grid.points();
+    let row = |p: &impact_model::Bilayer| impact_study::sweep_row(*p, &engine, &viscosity, timing);
     let start = Instant::now();
     let rows = if journaled {
         let settings = serde_json::json!({
@@ -46,47 +46,29 @@ pub fn sweep(a: SweepArgs) -> anyhow::Result<()> {
             "timing": timing,
             "version": env!("CARGO_PKG_VERSION"),
         });
-        let header = JournalHeader::new("sweep", settings, points.len(), shard);
-        let (journal, done) = open_journal::<Row>(&a.out, &header, a.journal.resume)?;
-        let todo: Vec<_> = points
-            .iter()
-            .copied()
-            .filter(|(k, _)| shard.contains(*k) && !done.contains_key(k))
-            .collect();
-        let bar = progress(todo.len(), "points");
-        let failures = std::sync::Mutex::new(Vec::new());
-        let rows = impact_study::sweep(&todo, &engine, &viscosity, timing, &|k, row| {
-            if let Err(e) = journal.append(k, row) {
-                failures.lock().unwrap_or_else(|p| p.into_inner()).push(e);
-            }
-            bar.inc(1);
-        });
-        bar.finish_and_clear();
-        if let Some(e) = failures
-            .into_inner()
-            .unwrap_or_else(|p| p.into_inner())
-            .pop()
-        {
-            return Err(e.into());
-        }
+        let plan = JournalPlan {
+            path: &a.out,
+            header: JournalHeader::new("sweep", settings, points.len(), shard),
+            resume: a.journal.resume,
+        };
+        let done = run_journaled(&points, &plan, |_, p| row(p))?;
         eprintln!(
             "{}: {} points of shard {}/{} ({} resumed){}",
             a.out.display(),
-            done.len() + rows.len(),
+            done.resumed.len() + done.fresh.len(),
             shard.index,
             shard.count,
-            done.len(),
+            done.resumed.len(),
             if shard == Shard::ALL {
                 "; write the rows a plain sweep would with `impact merge FILE --out rows.csv`"
             } else {
                 "; join the shards with `impact merge`"
             }
         );
-        rows
+        // the summary below counts what this run computed
+        done.fresh.into_values().collect::<Vec<Row>>()
     } else {
-        let bar = progress(points.len(), "points");
-        let rows = impact_study::sweep(&points, &engine, &viscosity, timing, &|_, _| bar.inc(1));
-        bar.finish_and_clear();
+        let rows = par_map(&points, &Bar::new("points"), row);
         let format = RowFormat::from_path(&a.out);
         write_atomically(&a.out, |w| format.write(&rows, timing, w))?;
         rows

@@ -65,13 +65,13 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
         x: axis.clone(),
         alpha: axis,
     };
-    let points: Vec<(usize, Bilayer)> = grid.points().into_iter().enumerate().collect();
+    let points = grid.points();
     let rows = sweep(
         &points,
         &Engine::Wave(WaveConfig::default()),
         &BilayerViscosity::default(),
         false,
-        &|_, _| {},
+        &(),
     );
     if let Some(r) = rows.iter().find(|r| r.error.is_some()) {
         return Err(PaperError::Engine(format!(

@@ -8,21 +8,13 @@ use impact_study::{BilayerViscosity, Engine, Grid, sweep};
 use impact_wave::WaveConfig;
 
 fn paper_grid(c: &mut Criterion) {
-    let points: Vec<_> = Grid::paper().points().into_iter().enumerate().collect();
+    let points = Grid::paper().points();
     let engine = Engine::Wave(WaveConfig::default());
     let mut group = c.benchmark_group("sweep");
     group.sample_size(10);
     group.throughput(Throughput::Elements(points.len() as u64));
     group.bench_function("paper_grid_wave", |b| {
-        b.iter(|| {
-            sweep(
-                &points,
-                &engine,
-                &BilayerViscosity::default(),
-                false,
-                &|_, _| {},
-            )
-        })
+        b.iter(|| sweep(&points, &engine, &BilayerViscosity::default(), false, &()))
     });
     group.finish();
 }

@@ -7,9 +7,11 @@
 pub mod grid;
 pub mod journal;
 pub mod limit;
+pub mod runner;
 pub mod sweep;
 
 pub use grid::{Axis, Grid, GridError};
 pub use journal::{Journal, JournalError, JournalHeader, Shard};
 pub use limit::{ChainLimit, LimitSettings, chain_limit};
-pub use sweep::{BilayerViscosity, Engine, Row, RowFormat, sweep};
+pub use runner::{Finished, JournalPlan, Progress, par_map, run_journaled};
+pub use sweep::{BilayerViscosity, Engine, Row, RowFormat, sweep, sweep_row};

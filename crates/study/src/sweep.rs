@@ -4,7 +4,6 @@ use impact_chain::ChainConfig;
 use impact_model::{Bilayer, Outcome, Scene, WallContact};
 use impact_rigid::RigidConfig;
 use impact_wave::WaveConfig;
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 /// The engine a sweep runs, with its validated settings.
@@ -263,26 +262,24 @@ impl RowFormat {
     }
 }
 
-/// Runs every `(grid index, point)` in parallel; rows come back in the order
-/// given, whatever the number of threads. `on_row` is called with each
-/// finished row (from the worker threads), e.g. to journal it or to tick a
-/// progress bar.
+/// The row of one point.
+pub fn sweep_row(p: Bilayer, engine: &Engine, viscosity: &BilayerViscosity, timing: bool) -> Row {
+    let law = viscosity.wall_contact.unwrap_or_default();
+    Row::new(p, engine.name(), law, engine.run(p, viscosity), timing)
+}
+
+/// Runs every point in parallel (through [`crate::par_map`]); rows come back
+/// in the order given, whatever the number of threads.
 pub fn sweep(
-    points: &[(usize, Bilayer)],
+    points: &[Bilayer],
     engine: &Engine,
     viscosity: &BilayerViscosity,
     timing: bool,
-    on_row: &(dyn Fn(usize, &Row) + Sync),
+    progress: &dyn crate::Progress,
 ) -> Vec<Row> {
-    points
-        .par_iter()
-        .map(|&(index, p)| {
-            let law = viscosity.wall_contact.unwrap_or_default();
-            let row = Row::new(p, engine.name(), law, engine.run(p, viscosity), timing);
-            on_row(index, &row);
-            row
-        })
-        .collect()
+    crate::par_map(points, progress, |&p| {
+        sweep_row(p, engine, viscosity, timing)
+    })
 }
 
 #[cfg(test)]
@@ -295,7 +292,7 @@ mod tests {
             x: crate::Axis::parse("x", "0.1:0.9:0.2").unwrap(),
             alpha: crate::Axis::parse("alpha", "0.05:0.95:0.3").unwrap(),
         };
-        let points: Vec<(usize, Bilayer)> = grid.points().into_iter().enumerate().collect();
+        let points = grid.points();
         let engine = Engine::Wave(WaveConfig::default());
         let v = BilayerViscosity::default();
         let one = rayon::ThreadPoolBuilder::new()
@@ -306,10 +303,10 @@ mod tests {
             .num_threads(4)
             .build()
             .unwrap();
-        let a = one.install(|| sweep(&points, &engine, &v, false, &|_, _| {}));
-        let b = four.install(|| sweep(&points, &engine, &v, false, &|_, _| {}));
+        let a = one.install(|| sweep(&points, &engine, &v, false, &()));
+        let b = four.install(|| sweep(&points, &engine, &v, false, &()));
         assert_eq!(a, b);
-        for (row, (_, p)) in a.iter().zip(&points) {
+        for (row, p) in a.iter().zip(&points) {
             assert_eq!((row.x, row.alpha), (p.x, p.alpha));
         }
     }
