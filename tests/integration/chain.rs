@@ -116,13 +116,7 @@ fn calibration_round_trip() {
             .unwrap()
     };
     assert!(law("unilateral") > 1.3 * law("paper"));
-    let out = impact(&[
-        "calibrate",
-        "--wall-contact",
-        "sticky",
-        "--restitution",
-        "0.4",
-    ]);
+    let out = impact_words("calibrate --wall-contact sticky --restitution 0.4", &[]);
     assert_eq!(out.status.code(), Some(2));
     assert!(
         stderr(&out).contains("'paper' or 'unilateral'"),
@@ -148,22 +142,8 @@ fn the_calibration_gives_the_layer_restitution_it_promises() {
 
 #[test]
 fn chain_sweep() {
-    let dir = scratch("chainsweep");
-    let path = dir.join("g.csv");
-    let out = impact(&[
-        "sweep",
-        "--x",
-        "0.2:0.4:0.2",
-        "--alpha",
-        "0.05",
-        "--engine",
-        "chain",
-        "--n",
-        "200",
-        "--out",
-        path.to_str().unwrap(),
-    ]);
-    assert!(out.status.success(), "{}", stderr(&out));
+    let words = "sweep --x 0.2:0.4:0.2 --alpha 0.05 --engine chain --n 200 --out";
+    let (path, _) = writes("chainsweep", "g.csv", words);
     let text = std::fs::read_to_string(&path).unwrap();
     assert_eq!(text.lines().count(), 3);
     assert!(text.lines().nth(1).unwrap().contains(",chain,"));
@@ -206,17 +186,10 @@ fn the_wall_contact_law_is_named_and_matters_only_for_a_viscous_bottom() {
     // the sweep CSV has a column for it
     let dir = scratch("law-sweep");
     let csv = dir.join("grid.csv");
-    let out = impact(&[
-        "sweep",
-        "--x",
-        "0.5",
-        "--alpha",
-        "0.3",
-        "--wall-contact",
-        "unilateral",
-        "--out",
-        csv.to_str().unwrap(),
-    ]);
+    let out = impact_words(
+        "sweep --x 0.5 --alpha 0.3 --wall-contact unilateral --out",
+        &[csv.to_str().unwrap()],
+    );
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
     let text = std::fs::read_to_string(&csv).unwrap();
     let mut lines = text.lines();

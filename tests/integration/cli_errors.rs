@@ -145,17 +145,10 @@ fn bad_sweeps_write_no_file() {
 #[test]
 fn a_run_that_cannot_finish_says_why_with_status_1() {
     // exact fronts only, and too few events for a scene whose fronts multiply
-    let out = impact(&[
-        "run",
-        "--x",
-        "0.999",
-        "--alpha",
-        "0.0001",
-        "--resolution",
-        "exact",
-        "--max-events",
-        "100000",
-    ]);
+    let out = impact_words(
+        "run --x 0.999 --alpha 0.0001 --resolution exact --max-events 100000",
+        &[],
+    );
     assert_eq!(out.status.code(), Some(1));
     assert!(stdout(&out).is_empty());
     let err = stderr(&out);
@@ -176,16 +169,7 @@ fn a_run_that_cannot_finish_says_why_with_status_1() {
 #[test]
 fn a_horizon_reached_in_contact_is_not_a_result() {
     // (a horizon reached in flight is the paper's own stop, and a result)
-    let out = impact(&[
-        "run",
-        "--x",
-        "0.4",
-        "--alpha",
-        "0.05",
-        "--horizon",
-        "0.5",
-        "--json",
-    ]);
+    let out = impact_words("run --x 0.4 --alpha 0.05 --horizon 0.5 --json", &[]);
     assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
     assert!(stdout(&out).is_empty());
     assert!(stderr(&out).contains("--horizon"), "{}", stderr(&out));
@@ -219,17 +203,10 @@ fn impossible_scenes_and_engine_mismatches_are_input_errors() {
         assert_eq!(err.lines().count(), 1, "{err}");
         assert!(err.contains(needle), "{text}: {err}");
     }
-    let out = impact(&[
-        "run",
-        "--x",
-        "0.4",
-        "--alpha",
-        "0.05",
-        "--e1",
-        "0.9",
-        "--engine",
-        "rigid-bottom",
-    ]);
+    let out = impact_words(
+        "run --x 0.4 --alpha 0.05 --e1 0.9 --engine rigid-bottom",
+        &[],
+    );
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
     assert!(stderr(&out).contains("--engine rigid-bottom"));
 }

@@ -4,9 +4,10 @@ use crate::support::*;
 use serde_json::Value;
 use std::path::Path;
 
-fn ok(args: &[&str]) -> std::process::Output {
-    let out = impact(args);
-    assert!(out.status.success(), "{args:?}: {}", stderr(&out));
+/// Runs `words` (split on whitespace) then `rest`, and insists on success.
+fn ok(words: &str, rest: &[&str]) -> std::process::Output {
+    let out = impact_words(words, rest);
+    assert!(out.status.success(), "{words} {rest:?}: {}", stderr(&out));
     out
 }
 
@@ -28,18 +29,10 @@ const REPORT_FILES: [&str; 7] = [
 fn small_compare_writes_every_file_with_the_numbers_of_separate_runs() {
     let dir = scratch("cmp-small");
     let out = dir.join("r");
-    ok(&[
-        "compare",
-        "--x",
-        "0.2:0.4:0.2",
-        "--alpha",
-        "0.05:0.3:0.25",
-        "--n",
-        "200",
-        "--no-timing",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    ok(
+        "compare --x 0.2:0.4:0.2 --alpha 0.05:0.3:0.25 --n 200 --no-timing --out",
+        &[out.to_str().unwrap()],
+    );
     for f in REPORT_FILES {
         assert!(out.join(f).metadata().unwrap().len() > 0, "{f}");
     }
@@ -52,9 +45,9 @@ fn small_compare_writes_every_file_with_the_numbers_of_separate_runs() {
             p["alpha"].as_f64().unwrap().to_string(),
         );
         let run = |extra: &[&str]| -> Value {
-            let mut args = vec!["run", "--x", &x, "--alpha", &a, "--json"];
-            args.extend_from_slice(extra);
-            serde_json::from_str(&stdout(&ok(&args))).unwrap()
+            let mut rest = vec!["--x", &x, "--alpha", &a, "--json"];
+            rest.extend_from_slice(extra);
+            serde_json::from_str(&stdout(&ok("run", &rest))).unwrap()
         };
         let exact = run(&[]);
         let chain = run(&["--engine", "chain", "--n", "200"]);
@@ -79,18 +72,10 @@ fn small_compare_writes_every_file_with_the_numbers_of_separate_runs() {
 fn at_n_1000_the_engines_agree_across_all_regions() {
     let dir = scratch("cmp-regions");
     let out = dir.join("r");
-    ok(&[
-        "compare",
-        "--x",
-        "0.1:0.9:0.2",
-        "--alpha",
-        "0.03:0.93:0.15",
-        "--n",
-        "1000",
-        "--no-timing",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    ok(
+        "compare --x 0.1:0.9:0.2 --alpha 0.03:0.93:0.15 --n 1000 --no-timing --out",
+        &[out.to_str().unwrap()],
+    );
     let s = &report(&out)["summary"];
     let (max, share) = (
         s["max_abs_de"].as_f64().unwrap(),
@@ -111,20 +96,17 @@ fn disagreement_shrinks_as_n_grows() {
     let mut shares = Vec::new();
     for n in ["125", "1000"] {
         let out = dir.join(n);
-        ok(&[
-            "compare",
-            "--x",
-            "0.1:0.9:0.2",
-            "--alpha",
-            "0.05:0.85:0.2",
-            "--n",
-            n,
-            "--tolerance",
-            "0.003",
-            "--no-timing",
-            "--out",
-            out.to_str().unwrap(),
-        ]);
+        ok(
+            "compare --x 0.1:0.9:0.2 --alpha 0.05:0.85:0.2 --n",
+            &[
+                n,
+                "--tolerance",
+                "0.003",
+                "--no-timing",
+                "--out",
+                out.to_str().unwrap(),
+            ],
+        );
         let s = &report(&out)["summary"];
         shares.push((
             1.0 - s["agree"].as_f64().unwrap(),
@@ -143,18 +125,10 @@ fn disagreement_shrinks_as_n_grows() {
 fn several_sizes_give_orders_and_extrapolation() {
     let dir = scratch("cmp-orders");
     let out = dir.join("r");
-    ok(&[
-        "compare",
-        "--x",
-        "0.3",
-        "--alpha",
-        "0.3",
-        "--n",
-        "250,500,1000",
-        "--no-timing",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    ok(
+        "compare --x 0.3 --alpha 0.3 --n 250,500,1000 --no-timing --out",
+        &[out.to_str().unwrap()],
+    );
     let p = &report(&out)["points"][0];
     let order = p["observed_order"].as_f64().unwrap();
     assert!(order > 0.3 && order < 1.5, "{order}");
@@ -185,24 +159,18 @@ fn same_files(a: &Path, b: &Path, files: &[&str]) {
 #[test]
 fn sharded_and_merged_compare_equals_unsharded() {
     let dir = scratch("cmp-shards");
-    let grid = [
-        "--x",
-        "0.2:0.8:0.3",
-        "--alpha",
-        "0.1:0.7:0.3",
-        "--n",
-        "150",
-        "--no-timing",
-    ];
+    let grid = "--x 0.2:0.8:0.3 --alpha 0.1:0.7:0.3 --n 150 --no-timing";
     let whole = dir.join("whole");
-    let mut args = vec!["compare", "--out", whole.to_str().unwrap()];
-    args.extend_from_slice(&grid);
-    ok(&args);
+    ok(
+        &format!("compare {grid}"),
+        &["--out", whole.to_str().unwrap()],
+    );
     let parts = dir.join("parts");
     for s in ["1/3", "2/3", "3/3"] {
-        let mut args = vec!["compare", "--out", parts.to_str().unwrap(), "--shard", s];
-        args.extend_from_slice(&grid);
-        ok(&args);
+        ok(
+            &format!("compare {grid}"),
+            &["--out", parts.to_str().unwrap(), "--shard", s],
+        );
     }
     assert!(
         !parts.join("report.json").exists(),
@@ -217,9 +185,9 @@ fn sharded_and_merged_compare_equals_unsharded() {
                 .into_owned()
         })
         .collect();
-    let mut args = vec!["merge", "--out", merged.to_str().unwrap()];
-    args.extend(journals.iter().map(String::as_str));
-    ok(&args);
+    let mut rest = vec!["--out", merged.to_str().unwrap()];
+    rest.extend(journals.iter().map(String::as_str));
+    ok("merge", &rest);
     same_files(&whole, &merged, &REPORT_FILES);
     // a missing shard is an input error that names what is missing
     let out = impact(&[
@@ -236,34 +204,32 @@ fn sharded_and_merged_compare_equals_unsharded() {
 #[test]
 fn sharded_and_merged_sweep_equals_unsharded() {
     let dir = scratch("sweep-shards");
-    let grid = [
-        "--x",
-        "0.05:0.95:0.1",
-        "--alpha",
-        "0.05:0.95:0.15",
-        "--no-timing",
-    ];
+    let grid = "--x 0.05:0.95:0.1 --alpha 0.05:0.95:0.15 --no-timing";
     let whole = dir.join("whole.csv");
-    let mut args = vec!["sweep", "--out", whole.to_str().unwrap()];
-    args.extend_from_slice(&grid);
-    ok(&args);
+    ok(
+        &format!("sweep {grid}"),
+        &["--out", whole.to_str().unwrap()],
+    );
     let mut journals = Vec::new();
     for i in 1..=2 {
         let j = dir.join(format!("part{i}.jsonl"));
         let shard = format!("{i}/2");
-        let mut args = vec!["sweep", "--out", j.to_str().unwrap(), "--shard", &shard];
-        args.extend_from_slice(&grid);
-        ok(&args);
+        ok(
+            &format!("sweep {grid}"),
+            &["--out", j.to_str().unwrap(), "--shard", &shard],
+        );
         journals.push(j.to_string_lossy().into_owned());
     }
     let merged = dir.join("merged.csv");
-    ok(&[
+    ok(
         "merge",
-        &journals[0],
-        &journals[1],
-        "--out",
-        merged.to_str().unwrap(),
-    ]);
+        &[
+            &journals[0],
+            &journals[1],
+            "--out",
+            merged.to_str().unwrap(),
+        ],
+    );
     assert_eq!(
         std::fs::read(&whole).unwrap(),
         std::fs::read(&merged).unwrap()
@@ -275,19 +241,12 @@ fn sharded_and_merged_sweep_equals_unsharded() {
 #[test]
 fn killed_then_resumed_equals_uninterrupted() {
     let dir = scratch("cmp-resume");
-    let grid = [
-        "--x",
-        "0.2:0.8:0.3",
-        "--alpha",
-        "0.1:0.7:0.3",
-        "--n",
-        "150",
-        "--no-timing",
-    ];
+    let grid = "--x 0.2:0.8:0.3 --alpha 0.1:0.7:0.3 --n 150 --no-timing";
     let whole = dir.join("whole");
-    let mut args = vec!["compare", "--out", whole.to_str().unwrap()];
-    args.extend_from_slice(&grid);
-    ok(&args);
+    ok(
+        &format!("compare {grid}"),
+        &["--out", whole.to_str().unwrap()],
+    );
     // the journal as a kill would leave it: 4 of 9 points and a torn fifth line
     let cut = dir.join("cut");
     std::fs::create_dir_all(&cut).unwrap();
@@ -297,9 +256,10 @@ fn killed_then_resumed_equals_uninterrupted() {
     partial.push('\n');
     partial.push_str(&lines[5][..lines[5].len() / 2]);
     std::fs::write(cut.join("points.jsonl"), partial).unwrap();
-    let mut args = vec!["compare", "--out", cut.to_str().unwrap(), "--resume"];
-    args.extend_from_slice(&grid);
-    ok(&args);
+    ok(
+        &format!("compare {grid}"),
+        &["--out", cut.to_str().unwrap(), "--resume"],
+    );
     same_files(&whole, &cut, &REPORT_FILES);
     let journal = std::fs::read_to_string(cut.join("points.jsonl")).unwrap();
     let mut indices: Vec<u64> = journal
@@ -324,27 +284,11 @@ fn killed_then_resumed_equals_uninterrupted() {
 fn a_real_kill_mid_run_resumes_cleanly() {
     let dir = scratch("sweep-kill");
     let journal = dir.join("j.jsonl");
-    let grid = [
-        "--x",
-        "0.05:0.95:0.05",
-        "--alpha",
-        "0.2:0.8:0.2",
-        "--engine",
-        "chain",
-        "--n",
-        "300",
-        "--no-timing",
-        "--threads",
-        "1",
-    ];
-    let mut args = vec![
-        "sweep",
-        "--out",
-        journal.to_str().unwrap(),
-        "--shard",
-        "1/1",
-    ];
-    args.extend_from_slice(&grid);
+    let grid =
+        "--x 0.05:0.95:0.05 --alpha 0.2:0.8:0.2 --engine chain --n 300 --no-timing --threads 1";
+    let mut args = vec!["sweep"];
+    args.extend(grid.split_whitespace());
+    args.extend(["--out", journal.to_str().unwrap(), "--shard", "1/1"]);
     let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_impact"))
         .args(&args)
         .stderr(std::process::Stdio::null())
@@ -363,27 +307,26 @@ fn a_real_kill_mid_run_resumes_cleanly() {
         before < 76,
         "the run finished before the kill: nothing was tested"
     );
-    let mut args = vec![
-        "sweep",
-        "--out",
-        journal.to_str().unwrap(),
-        "--shard",
-        "1/1",
-        "--resume",
-    ];
-    args.extend_from_slice(&grid);
-    ok(&args);
+    ok(
+        &format!("sweep {grid}"),
+        &[
+            "--out",
+            journal.to_str().unwrap(),
+            "--shard",
+            "1/1",
+            "--resume",
+        ],
+    );
     let merged = dir.join("resumed.csv");
-    ok(&[
+    ok(
         "merge",
-        journal.to_str().unwrap(),
-        "--out",
-        merged.to_str().unwrap(),
-    ]);
+        &[journal.to_str().unwrap(), "--out", merged.to_str().unwrap()],
+    );
     let whole = dir.join("whole.csv");
-    let mut args = vec!["sweep", "--out", whole.to_str().unwrap()];
-    args.extend_from_slice(&grid);
-    ok(&args);
+    ok(
+        &format!("sweep {grid}"),
+        &["--out", whole.to_str().unwrap()],
+    );
     assert_eq!(
         std::fs::read(&whole).unwrap(),
         std::fs::read(&merged).unwrap()
@@ -394,17 +337,10 @@ fn a_real_kill_mid_run_resumes_cleanly() {
 fn the_page_is_well_formed_and_self_contained() {
     let dir = scratch("cmp-html");
     let out = dir.join("r");
-    ok(&[
-        "compare",
-        "--x",
-        "0.1:0.3:0.1",
-        "--alpha",
-        "0.3",
-        "--n",
-        "100",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    ok(
+        "compare --x 0.1:0.3:0.1 --alpha 0.3 --n 100 --out",
+        &[out.to_str().unwrap()],
+    );
     let html = std::fs::read_to_string(out.join("index.html")).unwrap();
     // settings as readable JSON, never Rust Debug strings; grid values as
     // the grid writes them
@@ -459,27 +395,11 @@ fn the_page_is_well_formed_and_self_contained() {
 #[test]
 fn fail_above_gives_a_non_zero_exit() {
     let dir = scratch("cmp-fail");
-    let grid = ["--x", "0.3", "--alpha", "0.3", "--n", "100"];
-    let mut strict = vec![
-        "compare",
-        "--out",
-        dir.to_str().unwrap(),
-        "--fail-above",
-        "1e-6",
-    ];
-    strict.extend_from_slice(&grid);
-    let out = impact(&strict);
+    let grid = "compare --x 0.3 --alpha 0.3 --n 100 --fail-above";
+    let out = impact_words(grid, &["1e-6", "--out", dir.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(1));
     assert!(stderr(&out).contains("|de| > 0.000001"), "{}", stderr(&out));
-    let mut lax = vec![
-        "compare",
-        "--out",
-        dir.to_str().unwrap(),
-        "--fail-above",
-        "0.1",
-    ];
-    lax.extend_from_slice(&grid);
-    ok(&lax);
+    ok(grid, &["0.1", "--out", dir.to_str().unwrap()]);
 }
 
 #[test]
@@ -517,20 +437,10 @@ fn bad_compare_and_shard_input() {
 fn rerunning_a_shard_without_resume_keeps_its_journal() {
     let dir = scratch("shard-keep");
     let j = dir.join("part.jsonl");
-    let args = [
-        "sweep",
-        "--x",
-        "0.2:0.6:0.2",
-        "--alpha",
-        "0.3",
-        "--shard",
-        "1/2",
-        "--out",
-        j.to_str().unwrap(),
-    ];
-    ok(&args);
+    let words = "sweep --x 0.2:0.6:0.2 --alpha 0.3 --shard 1/2 --out";
+    ok(words, &[j.to_str().unwrap()]);
     let before = std::fs::read(&j).unwrap();
-    let out = impact(&args);
+    let out = impact_words(words, &[j.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(2));
     assert!(stderr(&out).contains("--resume"), "{}", stderr(&out));
     assert_eq!(
@@ -540,8 +450,6 @@ fn rerunning_a_shard_without_resume_keeps_its_journal() {
     );
     // a journal cut inside its header line is started again
     std::fs::write(&j, br#"{"journal":"impact-jou"#).unwrap();
-    let mut resume = args.to_vec();
-    resume.push("--resume");
-    ok(&resume);
+    ok(words, &[j.to_str().unwrap(), "--resume"]);
     assert!(std::fs::read_to_string(&j).unwrap().lines().count() >= 2);
 }

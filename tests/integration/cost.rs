@@ -4,21 +4,8 @@ use crate::support::*;
 
 #[test]
 fn quick_cost_study_writes_its_report() {
-    let dir = scratch("cost");
-    let out = dir.join("c");
-    let o = impact(&[
-        "cost",
-        "--quick",
-        "--x",
-        "0.2",
-        "--alpha",
-        "0.05",
-        "--target",
-        "5e-3",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
+    let words = "cost --quick --x 0.2 --alpha 0.05 --target 5e-3 --out";
+    let (out, o) = writes("cost", "c", words);
     assert!(stderr(&o).contains("headline"));
     for f in [
         "index.html",
@@ -44,21 +31,13 @@ fn quick_cost_study_writes_its_report() {
 #[test]
 fn bad_cost_input() {
     let dir = scratch("cost-bad");
-    let o = impact(&[
-        "cost",
-        "data/scenes/viscous-bilayer.json",
-        "--out",
-        dir.join("c").to_str().unwrap(),
-    ]);
+    let o = impact_words(
+        "cost data/scenes/viscous-bilayer.json --out",
+        &[dir.join("c").to_str().unwrap()],
+    );
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("elastic scene"));
-    let o = impact(&[
-        "cost",
-        "--target",
-        "0",
-        "--out",
-        dir.join("c").to_str().unwrap(),
-    ]);
+    let o = impact_words("cost --target 0 --out", &[dir.join("c").to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("--target must be"));
     assert!(files_in(&dir).is_empty());

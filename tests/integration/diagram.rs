@@ -7,15 +7,10 @@ fn diagram_writes_svg_png_and_a_page() {
     let dir = scratch("diagram");
     for ext in ["svg", "png"] {
         let out = dir.join(format!("d.{ext}"));
-        let o = impact(&[
-            "diagram",
-            "--x",
-            "0.4",
-            "--alpha",
-            "0.05",
-            "--out",
-            out.to_str().unwrap(),
-        ]);
+        let o = impact_words(
+            "diagram --x 0.4 --alpha 0.05 --out",
+            &[out.to_str().unwrap()],
+        );
         assert!(o.status.success(), "{}", stderr(&o));
         assert!(out.metadata().unwrap().len() > 10_000);
     }
@@ -23,32 +18,20 @@ fn diagram_writes_svg_png_and_a_page() {
     assert!(svg.starts_with("<svg") && svg.contains("takeoff-path") && svg.contains("<text"));
     assert_eq!(&std::fs::read(dir.join("d.png")).unwrap()[1..4], b"PNG");
     let out = dir.join("d2.svg");
-    let o = impact(&[
-        "diagram",
-        "--x",
-        "0.4",
-        "--alpha",
-        "0.05",
-        "--out",
-        out.to_str().unwrap(),
-        "--html",
-    ]);
+    let o = impact_words(
+        "diagram --x 0.4 --alpha 0.05 --out",
+        &[out.to_str().unwrap(), "--html"],
+    );
     assert!(o.status.success());
     let page = std::fs::read_to_string(dir.join("d2.html")).unwrap();
     assert!(
         page.contains("<title>front") && page.contains("final takeoff") && page.contains("<table>")
     );
     let bare = dir.join("d3.svg");
-    let o = impact(&[
-        "diagram",
-        "--x",
-        "0.4",
-        "--alpha",
-        "0.05",
-        "--out",
-        bare.to_str().unwrap(),
-        "--no-fronts",
-    ]);
+    let o = impact_words(
+        "diagram --x 0.4 --alpha 0.05 --out",
+        &[bare.to_str().unwrap(), "--no-fronts"],
+    );
     assert!(o.status.success());
     assert!(
         !std::fs::read_to_string(&bare)
@@ -84,12 +67,10 @@ fn chain_and_side_by_side_diagrams() {
         );
     }
     // a viscous scene can only be drawn from the chain
-    let o = impact(&[
-        "diagram",
-        "data/scenes/viscous-bilayer.json",
-        "--out",
-        dir.join("v.svg").to_str().unwrap(),
-    ]);
+    let o = impact_words(
+        "diagram data/scenes/viscous-bilayer.json --out",
+        &[dir.join("v.svg").to_str().unwrap()],
+    );
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("--engine chain"));
 }

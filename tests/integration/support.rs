@@ -37,3 +37,20 @@ pub fn files_in(dir: &Path) -> Vec<String> {
     v.sort();
     v
 }
+
+/// Runs the binary with `words` split on whitespace, then `rest` as they are
+/// (paths, and anything after them): one line per command in the tests.
+pub fn impact_words(words: &str, rest: &[&str]) -> Output {
+    let mut args: Vec<&str> = words.split_whitespace().collect();
+    args.extend_from_slice(rest);
+    impact(&args)
+}
+
+/// Runs `words` followed by a fresh path `file` in the scratch directory
+/// `test`, insists on success, and returns the path and the output.
+pub fn writes(test: &str, file: &str, words: &str) -> (PathBuf, Output) {
+    let path = scratch(test).join(file);
+    let out = impact_words(words, &[path.to_str().unwrap()]);
+    assert!(out.status.success(), "{words}: {}", stderr(&out));
+    (path, out)
+}

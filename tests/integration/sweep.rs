@@ -2,18 +2,8 @@ use crate::support::*;
 
 #[test]
 fn sweep_writes_one_row_per_point_in_grid_order() {
-    let dir = scratch("sweep");
-    let path = dir.join("grid.csv");
-    let out = impact(&[
-        "sweep",
-        "--x",
-        "0.1:0.9:0.1",
-        "--alpha",
-        "0.05:0.95:0.15",
-        "--out",
-        path.to_str().unwrap(),
-    ]);
-    assert!(out.status.success(), "{}", stderr(&out));
+    let words = "sweep --x 0.1:0.9:0.1 --alpha 0.05:0.95:0.15 --out";
+    let (path, out) = writes("sweep", "grid.csv", words);
     assert!(stdout(&out).is_empty());
     let text = std::fs::read_to_string(&path).unwrap();
     let mut lines = text.lines();
@@ -43,7 +33,7 @@ fn sweep_writes_one_row_per_point_in_grid_order() {
         .parse()
         .unwrap();
     assert!((e - 0.6).abs() < 1e-12);
-    assert_eq!(files_in(&dir), vec!["grid.csv"]);
+    assert_eq!(files_in(path.parent().unwrap()), vec!["grid.csv"]);
 }
 
 #[test]
@@ -52,18 +42,10 @@ fn sweep_output_is_identical_whatever_the_thread_count() {
     let mut texts = Vec::new();
     for threads in ["1", "2", "3"] {
         let path = dir.join(format!("grid-{threads}.csv"));
-        let out = impact(&[
-            "sweep",
-            "--x",
-            "0.05:0.95:0.05",
-            "--alpha",
-            "0.005:0.105:0.02",
-            "--no-timing",
-            "--threads",
-            threads,
-            "--out",
-            path.to_str().unwrap(),
-        ]);
+        let out = impact_words(
+            "sweep --x 0.05:0.95:0.05 --alpha 0.005:0.105:0.02 --no-timing --threads",
+            &[threads, "--out", path.to_str().unwrap()],
+        );
         assert!(out.status.success(), "{}", stderr(&out));
         texts.push(std::fs::read_to_string(&path).unwrap());
     }
@@ -78,15 +60,10 @@ fn jsonl_rows_match_csv_rows() {
     let csv = dir.join("g.csv");
     let jsonl = dir.join("g.jsonl");
     for p in [&csv, &jsonl] {
-        let out = impact(&[
-            "sweep",
-            "--x",
-            "0.2:0.6:0.2",
-            "--alpha",
-            "0.3",
-            "--out",
-            p.to_str().unwrap(),
-        ]);
+        let out = impact_words(
+            "sweep --x 0.2:0.6:0.2 --alpha 0.3 --out",
+            &[p.to_str().unwrap()],
+        );
         assert!(out.status.success(), "{}", stderr(&out));
     }
     let rows: Vec<serde_json::Value> = std::fs::read_to_string(&jsonl)
