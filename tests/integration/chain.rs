@@ -52,15 +52,8 @@ fn few_masses_per_layer_warn_and_too_few_fail() {
         "{}",
         stderr(&out)
     );
-    let out = impact(&[
-        "run", "--x", "0.1", "--alpha", "0.3", "--engine", "chain", "--n", "1",
-    ]);
-    assert_eq!(out.status.code(), Some(2));
-    assert!(
-        stderr(&out).contains("--n must be >= 2"),
-        "{}",
-        stderr(&out)
-    );
+    let too_few = "run --x 0.1 --alpha 0.3 --engine chain --n 1";
+    assert_input_error(&too_few.split(' ').collect::<Vec<_>>(), "--n must be >= 2");
 }
 
 #[test]
@@ -116,13 +109,14 @@ fn calibration_round_trip() {
             .unwrap()
     };
     assert!(law("unilateral") > 1.3 * law("paper"));
-    let out = impact_words("calibrate --wall-contact sticky --restitution 0.4", &[]);
-    assert_eq!(out.status.code(), Some(2));
-    assert!(
-        stderr(&out).contains("'paper' or 'unilateral'"),
-        "{}",
-        stderr(&out)
-    );
+    let sticky = [
+        "calibrate",
+        "--wall-contact",
+        "sticky",
+        "--restitution",
+        "0.4",
+    ];
+    assert_input_error(&sticky, "'paper' or 'unilateral'");
 }
 
 #[test]

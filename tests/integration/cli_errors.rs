@@ -3,38 +3,16 @@
 
 use crate::support::*;
 
-fn assert_input_error(args: &[&str], needle: &str) {
-    let out = impact(args);
-    assert_eq!(out.status.code(), Some(2), "{args:?}: {}", stderr(&out));
-    assert!(stdout(&out).is_empty(), "{args:?} printed on stdout");
-    let err = stderr(&out);
-    assert_eq!(
-        err.trim_end().lines().count(),
-        1,
-        "{args:?}: not one line:\n{err}"
-    );
-    assert!(err.contains(needle), "{args:?}: '{needle}' not in {err}");
-    assert!(!err.contains("panicked") && !err.contains("backtrace"));
-}
-
 #[test]
 fn out_of_range_bilayer_parameters() {
-    assert_input_error(
-        &["run", "--x", "0", "--alpha", "0.3"],
-        "x must be a number in (0, 1) (got 0)",
-    );
-    assert_input_error(
-        &["run", "--x", "0.3", "--alpha", "1"],
-        "alpha must be a number in (0, 1) (got 1)",
-    );
-    assert_input_error(
-        &["run", "--x", "-0.5", "--alpha", "0.3"],
-        "x must be a number in (0, 1)",
-    );
-    assert_input_error(
-        &["run", "--x", "NaN", "--alpha", "0.3"],
-        "x must be a number in (0, 1) (got NaN)",
-    );
+    for (x, alpha, needle) in [
+        ("0", "0.3", "x must be a number in (0, 1) (got 0)"),
+        ("0.3", "1", "alpha must be a number in (0, 1) (got 1)"),
+        ("-0.5", "0.3", "x must be a number in (0, 1)"),
+        ("NaN", "0.3", "x must be a number in (0, 1) (got NaN)"),
+    ] {
+        assert_input_error(&["run", "--x", x, "--alpha", alpha], needle);
+    }
     assert_input_error(&["run", "--x", "0.3"], "--alpha");
     assert_input_error(&["run", "--x", "abc", "--alpha", "0.3"], "--x");
     assert_input_error(&["run"], "give a scene file or both --x and --alpha");

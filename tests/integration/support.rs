@@ -54,3 +54,19 @@ pub fn writes(test: &str, file: &str, words: &str) -> (PathBuf, Output) {
     assert!(out.status.success(), "{words}: {}", stderr(&out));
     (path, out)
 }
+
+/// Bad input: exit status 2, one line on stderr containing `needle`, nothing
+/// on stdout, no panic.
+pub fn assert_input_error(args: &[&str], needle: &str) {
+    let out = impact(args);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {}", stderr(&out));
+    assert!(stdout(&out).is_empty(), "{args:?} printed on stdout");
+    let err = stderr(&out);
+    assert_eq!(
+        err.trim_end().lines().count(),
+        1,
+        "{args:?}: not one line:\n{err}"
+    );
+    assert!(err.contains(needle), "{args:?}: '{needle}' not in {err}");
+    assert!(!err.contains("panicked") && !err.contains("backtrace"));
+}
