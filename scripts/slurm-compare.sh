@@ -1,29 +1,26 @@
 #!/usr/bin/env bash
-# Example SLURM job array: the paper's full (x, alpha) grid compared at the
-# paper's N = 10^4, split into 200 shards. Each array task runs one shard and
-# journals into the shared report directory; a task killed by the scheduler
-# (time limit, preemption) is simply resubmitted: --resume finishes it without
-# redoing a point. When every task is done, join the shards:
+# `impact compare` on a SLURM cluster: one shard per array task.
 #
+#   OUT=paper-compare X=0.005:0.995:0.005 ALPHA=0.005:0.995:0.005 N=10000 \
+#     SHARDS=200 CPUS=8 scripts/slurm-compare.sh       # prints the job id
 #   impact merge paper-compare/points-shard-*-of-200.jsonl --out paper-compare
 #
-# Submit with:  sbatch scripts/slurm-compare.sh
-#SBATCH --job-name=impact-compare
-#SBATCH --array=1-200
-#SBATCH --cpus-per-task=8
-#SBATCH --time=24:00:00
-#SBATCH --requeue
-#SBATCH --output=logs/impact-compare-%A_%a.out
+# Resubmit dead tasks (the same variables, and INDICES): INDICES=3,17 ...
+# The README's "Running it on a SLURM cluster" says how to find them.
 set -euo pipefail
-
-SHARDS=200
-OUT=paper-compare
-mkdir -p logs "$OUT"
-
-impact compare \
-  --x 0.005:0.995:0.005 --alpha 0.005:0.995:0.005 \
-  --n 10000 --no-timing \
-  --threads "${SLURM_CPUS_PER_TASK:-1}" \
-  --out "$OUT" \
-  --shard "${SLURM_ARRAY_TASK_ID}/${SHARDS}" \
-  --resume
+: "${OUT:=compare-report}"       # report directory; journals go inside it
+: "${X:=0.05:0.95:0.05}"         # x grid START:STOP:STEP (or one value)
+: "${ALPHA:=0.05:0.95:0.05}"     # alpha grid
+: "${N:=1000}"                   # chain sizes, e.g. 250,500,1000
+: "${EXTRA:=}"                   # further impact compare flags
+if [[ -z "${SLURM_ARRAY_TASK_ID:-}" ]]; then
+  # submission (SLURM runs a copy of this file, so only here is it beside its helper)
+  source "$(dirname "$(readlink -f "$0")")/slurm-array.sh"
+  mkdir -p "$OUT"
+  submit compare
+  exit 0
+fi
+# shellcheck disable=SC2086 # EXTRA is a list of flags
+exec "$IMPACT" compare --x "$X" --alpha "$ALPHA" --n "$N" --no-timing \
+  --threads "${SLURM_CPUS_PER_TASK:-1}" --out "$OUT" \
+  --shard "$SLURM_ARRAY_TASK_ID/$SHARDS" --resume $EXTRA

@@ -47,6 +47,13 @@ pub fn journal_message(e: &JournalError) -> String {
         JournalError::Shard(text) => {
             format!("--shard must be I/N with 1 <= I <= N (got '{text}')")
         }
+        JournalError::Incomplete { shards, .. } => {
+            let list: Vec<String> = shards.iter().map(|s| s.index.to_string()).collect();
+            format!(
+                "{e} (rerun each shard's own command with --resume; with scripts/slurm-*.sh: the same settings and INDICES={})",
+                list.join(",")
+            )
+        }
         JournalError::Exists(path) => format!(
             "{} exists: add --resume to complete it, or remove it",
             path.display()
@@ -58,9 +65,10 @@ pub fn journal_message(e: &JournalError) -> String {
 /// A journal the user can fix (exit 2) or a failure (exit 1).
 pub fn journal(e: JournalError) -> anyhow::Error {
     match e {
-        JournalError::Shard(_) | JournalError::Exists(_) | JournalError::Mismatch { .. } => {
-            input(journal_message(&e))
-        }
+        JournalError::Shard(_)
+        | JournalError::Exists(_)
+        | JournalError::Locked { .. }
+        | JournalError::Mismatch { .. } => input(journal_message(&e)),
         e => anyhow::Error::new(e),
     }
 }

@@ -190,3 +190,24 @@ pub fn summary(title: &str, o: &Outcome) -> String {
     }
     s
 }
+
+/// A rate or count to three significant digits, never rounded to zero:
+/// `0.355`, `35.5`, `35500`.
+pub fn three_digits(v: f64) -> String {
+    if !v.is_finite() || v == 0.0 {
+        return format!("{v}");
+    }
+    let decimals = (2 - v.abs().log10().floor() as i32).max(0) as usize;
+    format!("{v:.decimals$}")
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn three_digits_never_rounds_a_rate_to_zero() {
+        assert_eq!(super::three_digits(0.3549), "0.355");
+        assert_eq!(super::three_digits(35.49), "35.5");
+        assert_eq!(super::three_digits(35490.0), "35490");
+        assert_eq!(super::three_digits(0.0), "0");
+    }
+}

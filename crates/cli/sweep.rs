@@ -86,9 +86,9 @@ pub fn sweep(a: SweepArgs) -> anyhow::Result<()> {
         )
     };
     eprintln!(
-        "computed {} rows in {wall:.2} s ({:.0} points/s, {work}){}",
+        "computed {} rows in {wall:.2} s ({} points/s, {work}){}",
         rows.len(),
-        rows.len() as f64 / wall,
+        crate::output::three_digits(rows.len() as f64 / wall),
         if failed > 0 {
             format!("; {failed} points failed (see the error column)")
         } else {

@@ -2,6 +2,7 @@
 
 mod chain;
 mod cli_errors;
+mod cluster;
 mod compare;
 mod cost;
 mod diagram;

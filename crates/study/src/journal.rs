@@ -22,6 +22,11 @@ pub enum JournalError {
     Shard(String),
     #[error("{0} exists: resume it, or remove it")]
     Exists(PathBuf),
+    #[error("{path} is being written by another process{}: wait for it to finish or stop it", holder.as_ref().map_or_else(String::new, |h| format!(" ({h})")))]
+    Locked {
+        path: PathBuf,
+        holder: Option<String>,
+    },
     #[error(
         "{path} was written by a different run ({what} differs): use the same settings, or another file"
     )]
@@ -33,12 +38,35 @@ pub enum JournalError {
         reason: String,
     },
     #[error(
-        "the journals miss {missing} of {total} points (first missing: index {first}); run or resume the missing shards"
+        "the journals miss {missing} of {total} points (first missing: index {first}), of shard{} {}: complete {} and merge again",
+        if shards.len() == 1 { "" } else { "s" },
+        shards.iter().map(|s| format!("{}/{}", s.index, s.count)).collect::<Vec<_>>().join(", "),
+        if shards.len() == 1 { "it" } else { "them" }
     )]
     Incomplete {
         missing: usize,
         total: usize,
         first: usize,
+        /// The shards the missing points belong to.
+        shards: Vec<Shard>,
+    },
+    #[error("{0} is given twice")]
+    GivenTwice(PathBuf),
+    #[error("{first} and {second} are both shard {}/{}: give each shard once", shard.index, shard.count)]
+    SameShard {
+        first: PathBuf,
+        second: PathBuf,
+        shard: Shard,
+    },
+    #[error(
+        "{first} is shard {}/{} but {second} is shard {}/{}: merge the journals of one sharding",
+        a.index, a.count, b.index, b.count
+    )]
+    MixedShardings {
+        first: PathBuf,
+        second: PathBuf,
+        a: Shard,
+        b: Shard,
     },
     #[error("point {index} appears twice with different results (in {path})")]
     Conflict { index: usize, path: PathBuf },
@@ -121,14 +149,18 @@ struct Entry<T> {
     row: T,
 }
 
-/// An open journal, appended to from many threads.
+/// An open journal, appended to from many threads, held under an exclusive
+/// lock (`crate::lock`) until dropped.
 pub struct Journal {
     path: PathBuf,
+    /// Dropped before `file`, whose closing releases the lock.
+    _owner: crate::lock::Owner,
     file: Mutex<std::fs::File>,
+    started_afresh: bool,
 }
 
-/// Reads a journal: its header and entries, dropping a torn last line when
-/// `repair` (returning the byte length of the good part).
+/// Reads a journal: its header and entries, dropping a torn last line
+/// (returning the byte length of the good part).
 fn read_entries<T: DeserializeOwned>(
     path: &Path,
 ) -> Result<(JournalHeader, BTreeMap<usize, T>, u64), JournalError> {
@@ -136,6 +168,14 @@ fn read_entries<T: DeserializeOwned>(
     std::fs::File::open(path)
         .and_then(|mut f| f.read_to_string(&mut text))
         .map_err(io(path))?;
+    parse_entries(path, &text)
+}
+
+/// [`read_entries`] of a text already read.
+fn parse_entries<T: DeserializeOwned>(
+    path: &Path,
+    text: &str,
+) -> Result<(JournalHeader, BTreeMap<usize, T>, u64), JournalError> {
     // everything after the last newline is a line cut short
     let good = text.rfind('\n').map_or(0, |i| i + 1);
     let mut lines = text[..good].lines().enumerate();
@@ -166,20 +206,37 @@ fn read_entries<T: DeserializeOwned>(
 }
 
 impl Journal {
-    /// Opens `path` for `header`. Without `resume` the file must not exist.
-    /// With `resume` an existing journal must have been written by the same
-    /// run; its finished points are returned and a torn last line is cut.
+    /// Opens `path` for `header`, under the journal's lock (a second writer
+    /// gets [`JournalError::Locked`] at once, before anything is read).
+    ///
+    /// A file cut before its header line ends is started again. Without
+    /// `resume` an existing unsharded journal is started afresh, but a
+    /// shard's is never touched ([`JournalError::Exists`]: hours of points
+    /// may be in it). With `resume` an existing journal must have been
+    /// written by the same run; its finished points are returned and a torn
+    /// last line is cut.
     pub fn open<T: DeserializeOwned>(
         path: &Path,
         header: &JournalHeader,
         resume: bool,
     ) -> Result<(Self, BTreeMap<usize, T>), JournalError> {
-        let exists = path.exists();
-        if exists && !resume {
+        let mut file = std::fs::OpenOptions::new()
+            .read(true)
+            .write(true)
+            .create(true)
+            .truncate(false)
+            .open(path)
+            .map_err(io(path))?;
+        let owner = crate::lock::lock(path, &file)?;
+        let mut text = String::new();
+        file.read_to_string(&mut text).map_err(io(path))?;
+        let started = text.contains('\n');
+        if started && !resume && header.shard != Shard::ALL {
             return Err(JournalError::Exists(path.to_path_buf()));
         }
-        if exists {
-            let (found, entries, good_len) = read_entries::<T>(path)?;
+        let mut entries = BTreeMap::new();
+        if started && resume {
+            let (found, done, good_len) = parse_entries::<T>(path, &text)?;
             for (what, same) in [
                 ("command", found.command == header.command),
                 ("settings", found.settings == header.settings),
@@ -193,37 +250,32 @@ impl Journal {
                     });
                 }
             }
-            let mut file = std::fs::OpenOptions::new()
-                .read(true)
-                .write(true)
-                .open(path)
-                .map_err(io(path))?;
             file.set_len(good_len).map_err(io(path))?;
-            file.seek(std::io::SeekFrom::End(0)).map_err(io(path))?;
-            return Ok((
-                Self {
-                    path: path.to_path_buf(),
-                    file: Mutex::new(file),
-                },
-                entries,
-            ));
+            entries = done;
+        } else {
+            let mut line =
+                serde_json::to_string(header).map_err(|e| io(path)(std::io::Error::other(e)))?;
+            line.push('\n');
+            file.set_len(0).map_err(io(path))?;
+            file.seek(std::io::SeekFrom::Start(0)).map_err(io(path))?;
+            file.write_all(line.as_bytes()).map_err(io(path))?;
         }
-        let mut file = std::fs::OpenOptions::new()
-            .create_new(true)
-            .append(true)
-            .open(path)
-            .map_err(io(path))?;
-        let mut line =
-            serde_json::to_string(header).map_err(|e| io(path)(std::io::Error::other(e)))?;
-        line.push('\n');
-        file.write_all(line.as_bytes()).map_err(io(path))?;
+        file.seek(std::io::SeekFrom::End(0)).map_err(io(path))?;
         Ok((
             Self {
                 path: path.to_path_buf(),
+                _owner: owner,
                 file: Mutex::new(file),
+                started_afresh: resume && !started,
             },
-            BTreeMap::new(),
+            entries,
         ))
+    }
+
+    /// `resume` was asked for, but there was no journal (or only a torn
+    /// header) to resume.
+    pub fn started_afresh(&self) -> bool {
+        self.started_afresh
     }
 
     /// Appends one finished point (one `write` of a whole line).
@@ -241,14 +293,38 @@ impl Journal {
 }
 
 /// Joins journals of one run into its full header (shard 1/1) and rows in
-/// grid order, checking that they agree and that no point is missing.
+/// grid order, checking that they agree, that each shard of one sharding is
+/// given once, and that no point is missing (naming the shards to rerun).
 pub fn merge<T: DeserializeOwned + PartialEq>(
     paths: &[PathBuf],
 ) -> Result<(JournalHeader, Vec<T>), JournalError> {
     let mut header: Option<JournalHeader> = None;
+    let mut seen: Vec<(PathBuf, PathBuf, Shard)> = Vec::new();
     let mut rows: BTreeMap<usize, T> = BTreeMap::new();
     for path in paths {
         let (h, entries, _) = read_entries::<T>(path)?;
+        let canonical = std::fs::canonicalize(path).map_err(io(path))?;
+        for (other, other_canonical, shard) in &seen {
+            if *other_canonical == canonical {
+                return Err(JournalError::GivenTwice(path.clone()));
+            }
+            if shard.count != h.shard.count {
+                return Err(JournalError::MixedShardings {
+                    first: other.clone(),
+                    second: path.clone(),
+                    a: *shard,
+                    b: h.shard,
+                });
+            }
+            if *shard == h.shard {
+                return Err(JournalError::SameShard {
+                    first: other.clone(),
+                    second: path.clone(),
+                    shard: h.shard,
+                });
+            }
+        }
+        seen.push((path.clone(), canonical, h.shard));
         if let Some(first) = &header {
             for (what, same) in [
                 ("command", first.command == h.command),
@@ -280,12 +356,23 @@ pub fn merge<T: DeserializeOwned + PartialEq>(
     }
     let mut header = header.ok_or(JournalError::Empty)?;
     let total = header.points;
-    if rows.len() != total || rows.keys().next_back().is_some_and(|&k| k >= total) {
-        let first = (0..total).find(|k| !rows.contains_key(k)).unwrap_or(0);
+    let missing: Vec<usize> = (0..total).filter(|k| !rows.contains_key(k)).collect();
+    if !missing.is_empty() || rows.keys().next_back().is_some_and(|&k| k >= total) {
+        let count = header.shard.count;
+        let mut shards: Vec<Shard> = missing
+            .iter()
+            .map(|&k| Shard {
+                index: (k % count as usize) as u32 + 1,
+                count,
+            })
+            .collect();
+        shards.sort_by_key(|s| s.index);
+        shards.dedup();
         return Err(JournalError::Incomplete {
-            missing: total.saturating_sub(rows.len()),
+            missing: missing.len(),
             total,
-            first,
+            first: missing.first().copied().unwrap_or(0),
+            shards,
         });
     }
     header.shard = Shard::ALL;
@@ -353,10 +440,6 @@ mod tests {
             .unwrap()
             .write_all(br#"{"index":3,"ro"#)
             .unwrap();
-        assert!(matches!(
-            Journal::open::<f64>(&p, &h, false),
-            Err(JournalError::Exists(_))
-        ));
         let (j, done) = Journal::open::<f64>(&p, &h, true).unwrap();
         assert_eq!(done.keys().copied().collect::<Vec<_>>(), vec![0, 1, 2]);
         j.append(3, &4.5).unwrap();
@@ -388,6 +471,45 @@ mod tests {
                 first: 1,
                 ..
             })
+        ));
+    }
+
+    #[test]
+    fn merge_names_the_shard_to_rerun_and_refuses_doubles_and_mixes() {
+        let write = |name: &str, shard: Shard, points: &[usize]| {
+            let p = tmp(name);
+            let h = JournalHeader::new("sweep", serde_json::json!({}), 6, shard);
+            let (j, _) = Journal::open::<f64>(&p, &h, true).unwrap();
+            for &k in points {
+                j.append(k, &(k as f64)).unwrap();
+            }
+            p
+        };
+        let of3 = |index| Shard { index, count: 3 };
+        let one = write("m1", of3(1), &[0, 3]);
+        let two = write("m2", of3(2), &[1, 4]);
+        let three_cut = write("m3", of3(3), &[2]);
+        match merge::<f64>(&[one.clone(), two.clone(), three_cut]) {
+            Err(e @ JournalError::Incomplete { .. }) => {
+                let text = e.to_string();
+                assert!(text.contains("miss 1 of 6 points") && text.contains("of shard 3/3"));
+            }
+            other => panic!("{other:?}"),
+        }
+        assert!(matches!(
+            merge::<f64>(&[one.clone(), two.clone(), one.clone()]),
+            Err(JournalError::GivenTwice(_))
+        ));
+        let copy = tmp("m1-copy");
+        std::fs::copy(&one, &copy).unwrap();
+        assert!(matches!(
+            merge::<f64>(&[one.clone(), copy]),
+            Err(JournalError::SameShard { .. })
+        ));
+        let whole = write("m-all", Shard::ALL, &[0, 1, 2, 3, 4, 5]);
+        assert!(matches!(
+            merge::<f64>(&[whole, one]),
+            Err(JournalError::MixedShardings { .. })
         ));
     }
 }

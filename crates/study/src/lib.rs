@@ -7,6 +7,7 @@
 pub mod grid;
 pub mod journal;
 pub mod limit;
+mod lock;
 pub mod runner;
 pub mod sweep;
 

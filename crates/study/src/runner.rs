@@ -8,7 +8,7 @@
 //! journal is never deleted, a torn line is redone, results do not depend on
 //! the thread count) now hold in one place, tested once.
 
-use crate::journal::{Journal, JournalError, JournalHeader, Shard};
+use crate::journal::{Journal, JournalError, JournalHeader};
 use rayon::prelude::*;
 use serde::Serialize;
 use serde::de::DeserializeOwned;
@@ -72,28 +72,16 @@ impl<T> Finished<T> {
 /// Runs the points of `plan.header.shard` not already in the journal, each
 /// appended to it as soon as it is done.
 ///
-/// Without `resume` an unsharded run starts afresh (its old journal is
-/// removed), but a shard's journal is never deleted: the run stops with
-/// [`JournalError::Exists`] (hours of points may be in it). A file cut before
-/// its header line ends is started again.
+/// The journal's rules are [`Journal::open`]'s: one writer at a time, a
+/// shard's journal never started afresh, a torn line redone.
 pub fn run_journaled<P: Sync, T: Serialize + DeserializeOwned + Send>(
     points: &[P],
     plan: &JournalPlan,
     progress: &dyn Progress,
     work: impl Fn(usize, &P) -> T + Sync,
 ) -> Result<Finished<T>, JournalError> {
-    let path = plan.path;
-    let io = |source| JournalError::Io {
-        path: path.to_path_buf(),
-        source,
-    };
-    let exists = path.exists();
-    let torn_header = exists && !std::fs::read(path).map_err(io)?.contains(&b'\n');
-    if torn_header || (!plan.resume && exists && plan.header.shard == Shard::ALL) {
-        std::fs::remove_file(path).map_err(io)?;
-    }
-    let started_afresh = plan.resume && !path.exists();
-    let (journal, done) = Journal::open::<T>(path, &plan.header, plan.resume)?;
+    let (journal, done) = Journal::open::<T>(plan.path, &plan.header, plan.resume)?;
+    let started_afresh = journal.started_afresh();
     let shard = plan.header.shard;
     let todo: Vec<usize> = (0..points.len())
         .filter(|&k| shard.contains(k) && !done.contains_key(&k))
@@ -118,6 +106,7 @@ pub fn run_journaled<P: Sync, T: Serialize + DeserializeOwned + Send>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::journal::Shard;
     use std::sync::atomic::{AtomicUsize, Ordering};
 
     struct Count(AtomicUsize, AtomicUsize);
