@@ -13,6 +13,7 @@
 #
 #   scripts/slurm-selftest.sh            # needs root (apt-get, daemons)
 #   IMPACT=target/debug/impact scripts/slurm-selftest.sh   # skip the build
+#   scripts/slurm-selftest.sh -- bash    # instead: a shell on the cluster
 set -euo pipefail
 cd "$(dirname "$(readlink -f "$0")")/.."
 repo=$PWD
@@ -98,6 +99,14 @@ done
 sinfo -h -o %t | grep -q idle || { echo "SLURM did not come up"; tail -n 20 "$work"/*.log; exit 1; }
 echo "== one-node SLURM up ($cpus CPUs, daemons ${pids[*]})"
 
+if [[ "${1:-}" == "--" ]]; then
+  shift
+  echo "== SLURM_CONF=$SLURM_CONF; the cluster stops when this command ends"
+  cd "$repo"
+  "$@"
+  exit
+fi
+
 # waits for every task of job $1 to leave the queue
 wait_job() {
   for _ in $(seq 1200); do
@@ -129,7 +138,7 @@ scenario() {
   if "$IMPACT" merge $glob --out "$merged" 2>"$work/merge.err"; then
     echo "merge did not notice the dead tasks"; exit 1
   fi
-  grep -q "shards 2/4, 3/4" "$work/merge.err" || { cat "$work/merge.err"; exit 1; }
+  grep -q "in shards 2-3 of 4" "$work/merge.err" || { cat "$work/merge.err"; exit 1; }
   echo "   merge refuses and names them: $(cat "$work/merge.err")"
   job=$(INDICES=2,3 "$repo/scripts/$script")
   echo "   resubmitted 2,3 as job $job"

@@ -47,13 +47,10 @@ pub fn journal_message(e: &JournalError) -> String {
         JournalError::Shard(text) => {
             format!("--shard must be I/N with 1 <= I <= N (got '{text}')")
         }
-        JournalError::Incomplete { shards, .. } => {
-            let list: Vec<String> = shards.iter().map(|s| s.index.to_string()).collect();
-            format!(
-                "{e} (rerun each shard's own command with --resume; with scripts/slurm-*.sh: the same settings and INDICES={})",
-                list.join(",")
-            )
-        }
+        JournalError::Incomplete { shards, .. } => format!(
+            "{e} (rerun each shard's own command with --resume; with scripts/slurm-*.sh: the same settings and INDICES={})",
+            impact_study::journal::shard_ranges(shards)
+        ),
         JournalError::Exists(path) => format!(
             "{} exists: add --resume to complete it, or remove it",
             path.display()

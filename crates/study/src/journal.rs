@@ -38,9 +38,10 @@ pub enum JournalError {
         reason: String,
     },
     #[error(
-        "the journals miss {missing} of {total} points (first missing: index {first}), of shard{} {}: complete {} and merge again",
+        "the journals miss {missing} of {total} points (first missing: index {first}), in shard{} {} of {}: complete {} and merge again",
         if shards.len() == 1 { "" } else { "s" },
-        shards.iter().map(|s| format!("{}/{}", s.index, s.count)).collect::<Vec<_>>().join(", "),
+        shard_ranges(shards),
+        shards.first().map_or(0, |s| s.count),
         if shards.len() == 1 { "it" } else { "them" }
     )]
     Incomplete {
@@ -77,6 +78,25 @@ pub enum JournalError {
         path: PathBuf,
         source: std::io::Error,
     },
+}
+
+/// Shard indices as SLURM writes array ranges: `2-4,7`.
+pub fn shard_ranges(shards: &[Shard]) -> String {
+    let mut parts: Vec<String> = Vec::new();
+    let mut i = 0;
+    while i < shards.len() {
+        let mut j = i;
+        while j + 1 < shards.len() && shards[j + 1].index == shards[j].index + 1 {
+            j += 1;
+        }
+        parts.push(if j == i {
+            shards[i].index.to_string()
+        } else {
+            format!("{}-{}", shards[i].index, shards[j].index)
+        });
+        i = j + 1;
+    }
+    parts.join(",")
 }
 
 fn io(path: &Path) -> impl Fn(std::io::Error) -> JournalError + '_ {
@@ -492,7 +512,7 @@ mod tests {
         match merge::<f64>(&[one.clone(), two.clone(), three_cut]) {
             Err(e @ JournalError::Incomplete { .. }) => {
                 let text = e.to_string();
-                assert!(text.contains("miss 1 of 6 points") && text.contains("of shard 3/3"));
+                assert!(text.contains("miss 1 of 6 points") && text.contains("in shard 3 of 3"));
             }
             other => panic!("{other:?}"),
         }
@@ -511,5 +531,15 @@ mod tests {
             merge::<f64>(&[whole, one]),
             Err(JournalError::MixedShardings { .. })
         ));
+    }
+
+    #[test]
+    fn shard_ranges_read_as_slurm_arrays() {
+        let of = |i: &[u32]| -> Vec<Shard> {
+            i.iter().map(|&index| Shard { index, count: 9 }).collect()
+        };
+        assert_eq!(shard_ranges(&of(&[2, 3, 4, 7])), "2-4,7");
+        assert_eq!(shard_ranges(&of(&[1])), "1");
+        assert_eq!(shard_ranges(&of(&[1, 3, 5, 6])), "1,3,5-6");
     }
 }
