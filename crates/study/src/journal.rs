@@ -259,6 +259,10 @@ impl Journal {
             let (found, done, good_len) = parse_entries::<T>(path, &text)?;
             for (what, same) in [
                 ("command", found.command == header.command),
+                (
+                    "the tool's version",
+                    found.settings.get("version") == header.settings.get("version"),
+                ),
                 ("settings", found.settings == header.settings),
                 ("grid size", found.points == header.points),
                 ("shard", found.shard == header.shard),
@@ -348,6 +352,10 @@ pub fn merge<T: DeserializeOwned + PartialEq>(
         if let Some(first) = &header {
             for (what, same) in [
                 ("command", first.command == h.command),
+                (
+                    "the tool's version",
+                    first.settings.get("version") == h.settings.get("version"),
+                ),
                 ("settings", first.settings == h.settings),
                 ("grid size", first.points == h.points),
             ] {
@@ -541,5 +549,25 @@ mod tests {
         assert_eq!(shard_ranges(&of(&[2, 3, 4, 7])), "2-4,7");
         assert_eq!(shard_ranges(&of(&[1])), "1");
         assert_eq!(shard_ranges(&of(&[1, 3, 5, 6])), "1,3,5-6");
+    }
+
+    #[test]
+    fn another_version_of_the_tool_is_named_as_the_difference() {
+        let p = tmp("version");
+        let of = |v: &str| {
+            JournalHeader::new(
+                "sweep",
+                serde_json::json!({"version": v, "x": "0.5"}),
+                2,
+                Shard::ALL,
+            )
+        };
+        drop(Journal::open::<f64>(&p, &of("0.1.0"), false).unwrap());
+        match Journal::open::<f64>(&p, &of("0.2.0"), true) {
+            Err(e @ JournalError::Mismatch { .. }) => {
+                assert!(e.to_string().contains("the tool's version differs"), "{e}");
+            }
+            other => panic!("{:?}", other.map(|_| ())),
+        }
     }
 }
