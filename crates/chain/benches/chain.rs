@@ -4,7 +4,7 @@
 //! cargo bench -p impact-chain --bench chain
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use impact_chain::{ChainConfig, ChainEngine};
+use impact_chain::{ChainConfig, ChainEngine, VerletChain};
 use impact_model::Bilayer;
 
 const MASSES: usize = 10_000;
@@ -41,6 +41,17 @@ fn kernels(c: &mut Criterion) {
             })
         });
     }
+    // the elastic kernel alone: Beeman's positions as Verlet's, two arrays
+    let rod = Bilayer::new(0.4, 0.05).unwrap().scene().validate().unwrap();
+    let layout = impact_chain::ChainLayout::new(&rod, MASSES).unwrap();
+    let mut verlet = VerletChain::new(&layout, layout.paper_time_step(), 1.0);
+    group.bench_function("elastic_verlet_kernel", |b| {
+        b.iter(|| {
+            for _ in 0..STEPS {
+                verlet.step();
+            }
+        })
+    });
     group.finish();
 }
 

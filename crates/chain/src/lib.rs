@@ -16,6 +16,8 @@ mod damping;
 mod engine;
 mod error;
 mod layout;
+mod verlet;
+pub use verlet::VerletChain;
 
 pub use config::{ChainConfig, ChainRecord, ChainStop};
 pub use engine::{ChainEngine, ChainRecording, RasterFrame};
