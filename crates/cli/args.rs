@@ -59,18 +59,6 @@ pub enum EngineChoice {
     RigidBottom,
 }
 
-impl WaveArgs {
-    /// `--target`, checked.
-    pub fn target(&self) -> anyhow::Result<Option<f64>> {
-        match self.target {
-            Some(t) if !(t.is_finite() && t > 0.0) => Err(input(format!(
-                "--target must be a finite number > 0 (got {t})"
-            ))),
-            t => Ok(t),
-        }
-    }
-}
-
 /// Settings of the exact engine.
 #[derive(Args, Debug, Clone)]
 pub struct WaveArgs {
@@ -154,16 +142,6 @@ pub struct EngineArgs {
 }
 
 impl EngineArgs {
-    fn horizon(&self) -> anyhow::Result<Option<f64>> {
-        match self.horizon {
-            None => Ok(None),
-            Some(f) if f.is_finite() && f > 0.0 => Ok(Some(f)),
-            Some(f) => Err(input(format!(
-                "--horizon must be a finite number > 0 (got {f})"
-            ))),
-        }
-    }
-
     /// The exact engine with validated settings, whatever `--engine` says.
     pub fn wave_engine(&self, record: Record) -> anyhow::Result<Engine> {
         let copy = EngineArgs {
@@ -183,8 +161,9 @@ impl EngineArgs {
     }
 
     /// The engine to run for a scene (`viscous`: any layer dissipates), with
-    /// validated settings. `auto` picks the exact engine for elastic scenes
-    /// and the chain otherwise; the exact engine refuses viscous scenes.
+    /// validated settings (by the engine's own check, before any run).
+    /// `auto` picks the exact engine for elastic scenes and the chain
+    /// otherwise; the exact engine refuses viscous scenes.
     pub fn engine(
         &self,
         viscous: bool,
@@ -192,7 +171,19 @@ impl EngineArgs {
         wave_record: Record,
         chain_record: ChainRecord,
     ) -> anyhow::Result<Engine> {
-        let horizon = self.horizon()?;
+        let engine = self.unchecked_engine(viscous, masses, wave_record, chain_record)?;
+        engine.check().map_err(crate::flags::setting)?;
+        Ok(engine)
+    }
+
+    fn unchecked_engine(
+        &self,
+        viscous: bool,
+        masses: usize,
+        wave_record: Record,
+        chain_record: ChainRecord,
+    ) -> anyhow::Result<Engine> {
+        let horizon = self.horizon;
         match (self.engine, viscous) {
             (EngineChoice::Wave, true) => Err(input(
                 "--engine wave: the scene has a viscous layer, and the exact engine handles elastic layers only (use --engine chain or auto)",
@@ -213,15 +204,13 @@ impl EngineArgs {
             })),
             (EngineChoice::Chain, _) | (EngineChoice::Auto, true) => {
                 let c = &self.chain;
-                let config = ChainConfig {
+                Ok(Engine::Chain(ChainConfig {
                     masses,
                     dt_factor: c.dt_factor,
                     stop: horizon.map_or(ChainStop::Escape, |factor| ChainStop::Horizon { factor }),
                     max_steps: c.max_steps,
                     record: chain_record,
-                };
-                config.check().map_err(crate::flags::chain)?;
-                Ok(Engine::Chain(config))
+                }))
             }
         }
     }
@@ -279,22 +268,9 @@ impl ViscosityArgs {
 }
 
 impl WaveArgs {
-    /// Validated exact-engine settings (stop rule: see `EngineArgs`).
+    /// Exact-engine settings (stop rule: see `EngineArgs`; ranges: checked
+    /// by the engine's own rule in `EngineArgs::engine`).
     pub fn config(&self, record: Record) -> anyhow::Result<WaveConfig> {
-        let nonneg = |name: &str, v: f64| {
-            if v.is_finite() && v >= 0.0 {
-                Ok(v)
-            } else {
-                Err(input(format!(
-                    "--{name} must be a finite number >= 0 (got {v})"
-                )))
-            }
-        };
-        if self.max_events == 0 || self.event_budget == 0 {
-            return Err(input(
-                "--max-events and --event-budget must be at least 1 (got 0)",
-            ));
-        }
         let resolution = match (self.resolution, self.merge_window) {
             (ResolutionChoice::Exact, Some(_)) => {
                 return Err(input(
@@ -305,17 +281,10 @@ impl WaveArgs {
             (ResolutionChoice::Auto, None) => Resolution::Auto {
                 exact_events: 200_000,
                 budget_events: self.event_budget,
-                target: self.target()?.unwrap_or(1e-5),
+                target: self.target.unwrap_or(1e-5),
             },
             (_, window) => {
                 let w = window.unwrap_or(1e-2);
-                // the error is measured at twice the window, which may be at
-                // most half a transit
-                if !(w.is_finite() && w > 0.0 && w <= 0.25) {
-                    return Err(input(format!(
-                        "--merge-window must be a number in (0, 0.25] (got {w})"
-                    )));
-                }
                 Resolution::Merged {
                     per_transit: w,
                     per_longest: w.min(1e-3),
@@ -324,7 +293,7 @@ impl WaveArgs {
         };
         Ok(WaveConfig {
             stop: StopRule::Escape,
-            drop_tolerance: nonneg("drop-tolerance", self.drop_tolerance)?,
+            drop_tolerance: self.drop_tolerance,
             resolution,
             precision: match self.precision {
                 PrecisionChoice::Checked => Precision::Checked,

@@ -4,7 +4,40 @@
 
 use crate::input;
 use impact_chain::ChainError;
+use impact_model::SettingError;
 use impact_study::{GridError, JournalError};
+
+/// The flag that sets each settings field the engines and studies check
+/// (`impact_model::SettingError::field`). A field no flag sets is reported
+/// by its own name.
+fn flag(field: &str) -> Option<&'static str> {
+    Some(match field {
+        // the chain
+        "dt_factor" => "dt-factor",
+        "masses" => "n",
+        "max_steps" => "max-steps",
+        "tau_c_over_l" => "tau-c-over-l",
+        // the exact engine
+        "drop_tolerance" => "drop-tolerance",
+        "per_transit" => "merge-window",
+        "max_events" => "max-events",
+        "budget_events" => "event-budget",
+        // the exact engine's automatic resolution and the chain's ladder
+        "target" => "target",
+        "max_masses" => "max-n",
+        // every engine
+        "horizon" => "horizon",
+        _ => return None,
+    })
+}
+
+/// A setting out of range (exit 2), worded as the flag that sets it.
+pub fn setting(e: SettingError) -> anyhow::Error {
+    match flag(e.field) {
+        Some(flag) => input(format!("--{flag} must be {} (got {})", e.allowed, e.value)),
+        None => input(e.to_string()),
+    }
+}
 
 /// A malformed axis: `name` is the flag's.
 pub fn grid(e: GridError) -> anyhow::Error {
@@ -18,21 +51,7 @@ pub fn chain(e: ChainError) -> anyhow::Error {
         ChainError::TooFewMasses { masses, layers } => input(format!(
             "the chain needs at least one mass per layer: --n must be >= {layers} (got {masses})"
         )),
-        ChainError::Setting {
-            field,
-            allowed,
-            value,
-        } => {
-            // the chain's fields, as the flags that set them
-            let flag = match field {
-                "dt_factor" => "dt-factor",
-                "masses" => "n",
-                "max_steps" => "max-steps",
-                "horizon" => "horizon",
-                _ => return input(e.to_string()),
-            };
-            input(format!("--{flag} must be {allowed} (got {value})"))
-        }
+        ChainError::Setting(e) => setting(e),
         ChainError::StepLimit { .. } => anyhow::Error::new(e)
             .context("the chain could not finish (raise --max-steps or use --horizon)"),
         ChainError::NonFinite { .. } => {

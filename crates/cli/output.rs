@@ -1,6 +1,6 @@
 //! Human-readable summaries and safe file writing.
 
-use impact_model::{Outcome, StopReason};
+use impact_model::{Outcome, StopReason, Timed};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -52,7 +52,7 @@ fn num(v: f64) -> String {
 }
 
 /// The readable summary of one run.
-pub fn summary(title: &str, o: &Outcome) -> String {
+pub fn summary(title: &str, o: &Timed<Outcome>) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "{title}");
     let engine = match o.engine {
@@ -165,11 +165,11 @@ pub fn summary(title: &str, o: &Outcome) -> String {
     };
     let _ = writeln!(s, "  stopped at t = {}  {stop}", num(o.end_time));
     if let Some(events) = o.events {
-        let rate = events as f64 / o.elapsed_seconds.max(1e-12);
+        let rate = events as f64 / o.seconds.max(1e-12);
         let _ = write!(
             s,
             "  work                 {events} events in {} ({:.1} M events/s)",
-            seconds(o.elapsed_seconds),
+            seconds(o.seconds),
             rate / 1e6
         );
         if let Some(t) = o.truncation {
@@ -185,7 +185,7 @@ pub fn summary(title: &str, o: &Outcome) -> String {
         let _ = writeln!(
             s,
             "  work                 {steps} steps in {}",
-            seconds(o.elapsed_seconds)
+            seconds(o.seconds)
         );
     }
     s

@@ -4,7 +4,7 @@ use crate::args::RunArgs;
 use crate::input;
 use crate::output::{summary, write_atomically};
 use impact_chain::{ChainEngine, ChainLayout, ChainRecord};
-use impact_model::{Scene, WallSample};
+use impact_model::{Scene, Timed, WallSample};
 use impact_rigid::RigidError;
 use impact_study::{Engine, LimitSettings, chain_limit};
 use impact_wave::{Record, WaveError};
@@ -51,7 +51,7 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
     let engine = a
         .engine
         .engine(rod.is_viscous(), masses, wave_record, chain_record)?;
-    let target = a.engine.wave.target()?;
+    let target = a.engine.wave.target;
     if a.max_n < 1000 {
         return Err(input(format!(
             "--max-n must be at least 1000 (got {})",
@@ -63,20 +63,28 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
             "--target drives the chain's extrapolation over N; it cannot go with --n (one chain)",
         ));
     }
-    let limit = (rod.is_viscous() && a.masses.is_none()).then_some(LimitSettings {
+    let ladder = LimitSettings {
         target,
         max_masses: a.max_n,
         ..LimitSettings::default()
-    });
+    };
+    // --target is checked whichever engine runs
+    ladder.check().map_err(crate::flags::setting)?;
+    let limit = (rod.is_viscous() && a.masses.is_none()).then_some(ladder);
     let (outcome, wall): (_, Vec<WallSample>) = match engine {
         Engine::Wave(config) => {
-            let solution = impact_wave::solve(&rod, &config).map_err(wave_failure)?;
-            let o = solution.outcome;
-            (o, solution.engine.recording().wall.clone())
+            let solution =
+                Timed::try_measure(|| impact_wave::solve(&rod, &config)).map_err(wave_failure)?;
+            let o = Timed {
+                value: solution.value.outcome,
+                seconds: solution.seconds,
+            };
+            (o, solution.value.engine.recording().wall.clone())
         }
         Engine::Chain(config) if limit.is_some() => {
             let settings = limit.unwrap_or_default();
-            let done = chain_limit(&rod, &config, &settings).map_err(crate::flags::chain)?;
+            let done = Timed::try_measure(|| chain_limit(&rod, &config, &settings))
+                .map_err(crate::flags::chain)?;
             if done.target_met == Some(false) {
                 eprintln!(
                     "warning: --target {} not met with chains up to --max-n {}: the estimate is the one below",
@@ -84,7 +92,11 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
                     settings.max_masses
                 );
             }
-            (done.outcome, done.recording.wall)
+            let o = Timed {
+                value: done.value.outcome,
+                seconds: done.seconds,
+            };
+            (o, done.value.recording.wall)
         }
         Engine::Chain(config) => {
             let layout = ChainLayout::new(&rod, config.masses).map_err(crate::flags::chain)?;
@@ -94,12 +106,13 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
                 );
             }
             let mut e = ChainEngine::new(&rod, config).map_err(crate::flags::chain)?;
-            let o = e.run().map_err(crate::flags::chain)?;
+            let o = Timed::try_measure(|| e.run()).map_err(crate::flags::chain)?;
             (o, e.recording().wall.clone())
         }
         Engine::RigidBottom(config) => {
-            let o = impact_rigid::simulate(&rod, &config).map_err(|e| match e {
-                RigidError::Setting { .. } | RigidError::ViscousLayer { .. } => input(e.to_string()),
+            let o = Timed::try_measure(|| impact_rigid::simulate(&rod, &config)).map_err(|e| match e {
+                RigidError::Setting(e) => crate::flags::setting(e),
+                RigidError::ViscousLayer { .. } => input(e.to_string()),
                 RigidError::Unfinished { .. } => anyhow::Error::new(e).context(
                     "the rigid-bottom model could not finish (raise --horizon, or drop it for the exact escape rule)",
                 ),
@@ -136,9 +149,8 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
 /// flags that change the outcome.
 pub fn wave_failure(e: WaveError) -> anyhow::Error {
     let hint = match &e {
-        WaveError::Setting { .. } | WaveError::ViscousLayer { .. } => {
-            return input(e.to_string());
-        }
+        WaveError::Setting(e) => return crate::flags::setting(e.clone()),
+        WaveError::ViscousLayer { .. } => return input(e.to_string()),
         WaveError::EventLimit { .. } => {
             "raise --max-events, or let fronts merge with --resolution auto (the default) or merged"
         }

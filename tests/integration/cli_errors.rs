@@ -188,3 +188,40 @@ fn impossible_scenes_and_engine_mismatches_are_input_errors() {
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
     assert!(stderr(&out).contains("--engine rigid-bottom"));
 }
+
+/// The engines check their own ranges and name fields; the binary words
+/// them as the flags that set those fields, before any run starts.
+#[test]
+fn engine_ranges_are_worded_as_flags() {
+    let bilayer = ["run", "--x", "0.3", "--alpha", "0.3"];
+    let cases: [(&[&str], &str); 6] = [
+        (
+            &["--merge-window", "0.3"],
+            "--merge-window must be a number in (0, 0.25] (got 0.3)",
+        ),
+        (
+            &["--event-budget", "0"],
+            "--event-budget must be at least 1 (got 0)",
+        ),
+        (
+            &["--max-events", "0"],
+            "--max-events must be at least 1 (got 0)",
+        ),
+        (
+            &["--engine", "rigid-bottom", "--horizon", "-2"],
+            "--horizon must be a finite number > 0 (got -2)",
+        ),
+        (
+            &["--engine", "chain", "--dt-factor", "0"],
+            "--dt-factor must be a number in (0, 10] (got 0)",
+        ),
+        (
+            &["--e2", "0.8", "--target", "0"],
+            "--target must be a finite number > 0 (got 0)",
+        ),
+    ];
+    for (extra, needle) in cases {
+        let args: Vec<&str> = bilayer.iter().chain(extra).copied().collect();
+        assert_input_error(&args, needle);
+    }
+}

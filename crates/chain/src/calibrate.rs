@@ -2,7 +2,7 @@
 //! of a homogeneous Kelvin-Voigt rod as a function of `tau c / L` alone.
 
 use crate::{ChainConfig, ChainError, simulate};
-use impact_model::{Layer, Scene, WallContact};
+use impact_model::{Allowed, Layer, Scene, SettingError, WallContact};
 
 /// How the tables in `data/calibration/kelvin-voigt-<law>.csv` are made: each entry
 /// is the chain at `n` and `2n` masses, Richardson-extrapolated assuming the
@@ -27,11 +27,7 @@ pub fn homogeneous_restitution(t: f64, masses: usize, law: WallContact) -> Resul
         wall_contact: Some(law),
     }
     .validate()
-    .map_err(|_| ChainError::Setting {
-        field: "tau_c_over_l",
-        allowed: "a finite number >= 0",
-        value: t,
-    })?;
+    .map_err(|_| SettingError::new("tau_c_over_l", Allowed::NonNegative, t))?;
     Ok(simulate(
         &rod,
         &ChainConfig {

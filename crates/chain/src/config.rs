@@ -1,5 +1,7 @@
 //! Numerical settings of the chain, each with the reason for its default.
 
+use impact_model::{Allowed, SettingError};
+
 /// When to stop.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -44,28 +46,13 @@ pub struct ChainConfig {
 impl ChainConfig {
     /// The settings' ranges, checked once, here: by the engine, and by a
     /// caller that wants to refuse bad settings before running anything.
-    pub fn check(&self) -> Result<(), crate::ChainError> {
-        let bad = |field, allowed, value| {
-            Err(crate::ChainError::Setting {
-                field,
-                allowed,
-                value,
-            })
-        };
-        if !(self.dt_factor.is_finite() && self.dt_factor > 0.0 && self.dt_factor <= 10.0) {
-            return bad("dt_factor", "a number in (0, 10]", self.dt_factor);
+    pub fn check(&self) -> Result<(), SettingError> {
+        Allowed::PositiveUpTo(10.0).check("dt_factor", self.dt_factor)?;
+        if let ChainStop::Horizon { factor } = self.stop {
+            Allowed::Positive.check("horizon", factor)?;
         }
-        if let ChainStop::Horizon { factor } = self.stop
-            && !(factor.is_finite() && factor > 0.0)
-        {
-            return bad("horizon", "a finite number > 0", factor);
-        }
-        if self.masses == 0 {
-            return bad("masses", "at least 1", 0.0);
-        }
-        if self.max_steps == 0 {
-            return bad("max_steps", "at least 1", 0.0);
-        }
+        Allowed::AtLeast(1).check_count("masses", self.masses as u64)?;
+        Allowed::AtLeast(1).check_count("max_steps", self.max_steps)?;
         Ok(())
     }
 }

@@ -1,3 +1,4 @@
+use impact_model::SettingError;
 use thiserror::Error;
 
 /// Why the chain could not run or finish.
@@ -7,12 +8,8 @@ pub enum ChainError {
         "the chain needs at least one mass per layer: masses must be >= {layers} (got {masses})"
     )]
     TooFewMasses { masses: usize, layers: usize },
-    #[error("invalid chain setting: {field} must be {allowed} (got {value})")]
-    Setting {
-        field: &'static str,
-        allowed: &'static str,
-        value: f64,
-    },
+    #[error("invalid chain setting: {0}")]
+    Setting(#[from] SettingError),
     #[error(
         "chain stopped at its step limit, {steps} steps, at t = {time:.6e} while still able to touch the wall"
     )]

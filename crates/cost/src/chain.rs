@@ -67,8 +67,7 @@ fn run(
             dt_factor,
             ..ChainConfig::default()
         },
-    )
-    .map_err(|e| CostError::Engine(e.to_string()))?;
+    )?;
     Ok((start.elapsed().as_secs_f64(), o))
 }
 

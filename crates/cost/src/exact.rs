@@ -38,7 +38,7 @@ pub fn exact_study(label: &str, rod: &Rod, s: &CostSettings) -> Result<Vec<Exact
         timed(|| {
             WaveEngine::new(rod, config.clone())
                 .and_then(|mut e| e.run())
-                .map_err(|e| CostError::Engine(e.to_string()))
+                .map_err(CostError::from)
         })
     };
     let (_, reference) = run(0.0, 0.0)?;

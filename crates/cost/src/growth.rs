@@ -35,13 +35,12 @@ pub fn growth_study() -> Result<Vec<Growth>, CostError> {
         .into_iter()
         .map(|(sweep, x, alpha)| {
             let b = Bilayer { x, alpha };
-            let rod = b
-                .scene()
-                .validate()
-                .map_err(|e| CostError::Engine(e.to_string()))?;
+            let rod = b.scene().validate()?;
             let (seconds, o) = timed(|| {
-                impact_wave::simulate(&rod, &impact_wave::WaveConfig::default())
-                    .map_err(|e| CostError::Engine(e.to_string()))
+                Ok(impact_wave::simulate(
+                    &rod,
+                    &impact_wave::WaveConfig::default(),
+                )?)
             })?;
             Ok(Growth {
                 sweep: sweep.to_string(),

@@ -21,8 +21,16 @@ use thiserror::Error;
 
 #[derive(Debug, Error)]
 pub enum CostError {
-    #[error("{0}")]
-    Engine(String),
+    #[error(
+        "layers[{layer}] is viscous: the cost study needs an elastic scene, whose exact solution is the reference (the viscous study is made from it)"
+    )]
+    ViscousScene { layer: usize },
+    #[error(transparent)]
+    Scene(#[from] impact_model::SceneError),
+    #[error(transparent)]
+    Wave(#[from] impact_wave::WaveError),
+    #[error(transparent)]
+    Chain(#[from] impact_chain::ChainError),
     #[error(transparent)]
     Plot(#[from] impact_plot::PlotError),
     #[error(transparent)]
@@ -89,11 +97,8 @@ pub fn cost_study(
     s: &CostSettings,
     progress: &dyn Fn(&str),
 ) -> Result<CostReport, CostError> {
-    let engine = |e: impact_model::SceneError| CostError::Engine(e.to_string());
-    if let Some(i) = rod.scene().layers.iter().position(|l| l.is_viscous()) {
-        return Err(CostError::Engine(format!(
-            "layers[{i}] is viscous: the cost study needs an elastic scene, whose exact solution is the reference (the viscous study is made from it)"
-        )));
+    if let Some(layer) = rod.scene().layers.iter().position(|l| l.is_viscous()) {
+        return Err(CostError::ViscousScene { layer });
     }
     progress("exact engine: tolerances and merge windows");
     let mut exact = exact_study(label, rod, s)?;
@@ -101,11 +106,7 @@ pub fn cost_study(
         ("Fig. 3(c) x = 0.4, alpha = 0.05", 0.4, 0.05),
         ("hard corner x = 0.995, alpha = 0.005", 0.995, 0.005),
     ] {
-        let r = impact_model::Bilayer::new(x, alpha)
-            .map_err(engine)?
-            .scene()
-            .validate()
-            .map_err(engine)?;
+        let r = impact_model::Bilayer::new(x, alpha)?.scene().validate()?;
         exact.extend(exact_study(name, &r, s)?);
     }
     let (_, reference) = exact_reference(rod)?;
@@ -116,7 +117,7 @@ pub fn cost_study(
     if let Some(top) = viscous_scene.layers.last_mut() {
         top.restitution = Some(s.viscous_e2);
     }
-    let viscous_rod = viscous_scene.validate().map_err(engine)?;
+    let viscous_rod = viscous_scene.validate()?;
     let (viscous, limit) = chain_study(ChainKind::Viscous, &viscous_rod, None, s)?;
     chain.extend(viscous);
     progress("exact engine: growth with t2/t1 and alpha");
@@ -152,7 +153,9 @@ pub(crate) fn timed<T>(mut f: impl FnMut() -> Result<T, CostError>) -> Result<(f
 /// A rod's exact restitution and its time (default settings).
 pub(crate) fn exact_reference(rod: &Rod) -> Result<(f64, impact_model::Outcome), CostError> {
     timed(|| {
-        impact_wave::simulate(rod, &impact_wave::WaveConfig::default())
-            .map_err(|e| CostError::Engine(e.to_string()))
+        Ok(impact_wave::simulate(
+            rod,
+            &impact_wave::WaveConfig::default(),
+        )?)
     })
 }

@@ -36,6 +36,18 @@ pub enum StopReason {
     RestsOnWall,
 }
 
+impl StopReason {
+    /// The reason a run stopped at its horizon: in flight the paper's own
+    /// stop and a result; in contact, `t_c` and `e` are not final.
+    pub fn at_horizon(in_contact: bool) -> Self {
+        if in_contact {
+            StopReason::HorizonInContact
+        } else {
+            StopReason::Horizon
+        }
+    }
+}
+
 /// What the exact engine left out to save time, so it is never silent.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 pub struct Truncation {
@@ -84,7 +96,9 @@ impl ErrorEstimate {
     }
 }
 
-/// Result of one impact, in the scene's units.
+/// Result of one impact, in the scene's units: a function of the scene and
+/// the settings alone. How long it took is the runner's business (a sweep's
+/// row, the command line's summary), so two runs of one point compare equal.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Outcome {
     pub engine: EngineKind,
@@ -135,8 +149,6 @@ pub struct Outcome {
     /// when the run was such a ladder (this outcome is then its finest run).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub extrapolation: Option<crate::richardson::Extrapolation>,
-    /// Wall-clock time of the run.
-    pub elapsed_seconds: f64,
 }
 
 impl Outcome {
@@ -187,7 +199,54 @@ impl Outcome {
             error_bound: None,
             error_estimate: None,
             extrapolation: None,
-            elapsed_seconds: 0.0,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ContactHistory;
+
+    fn outcome() -> Outcome {
+        let mut history = ContactHistory::new();
+        history.separate(2.0);
+        Outcome::from_history(
+            EngineKind::Wave,
+            0.9,
+            &history,
+            &[1.0],
+            3.0,
+            StopReason::Escaped,
+        )
+    }
+
+    /// An outcome is a function of the scene and the settings: nothing in it
+    /// measures the machine, so two runs of one point serialise alike.
+    #[test]
+    fn serialised_outcomes_carry_no_timing() {
+        let text = serde_json::to_string(&outcome()).unwrap();
+        for word in ["elapsed", "seconds", "duration", "wall_clock"] {
+            assert!(!text.contains(word), "{word} in {text}");
+        }
+    }
+
+    /// A runner's timing goes beside the outcome, as its last key.
+    #[test]
+    fn a_timed_outcome_is_the_outcome_and_elapsed_seconds_last() {
+        let o = outcome();
+        let timed = crate::Timed {
+            value: o.clone(),
+            seconds: 0.5,
+        };
+        let plain = serde_json::to_string(&o).unwrap();
+        let text = serde_json::to_string(&timed).unwrap();
+        assert_eq!(
+            text,
+            format!("{},\"elapsed_seconds\":0.5}}", plain.trim_end_matches('}'))
+        );
+        let back: crate::Timed<Outcome> = serde_json::from_str(&text).unwrap();
+        assert_eq!(back, timed);
+        assert_eq!(timed.restitution, 0.9);
     }
 }

@@ -57,10 +57,8 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
                 alpha: s.appendix_alpha,
             }
             .scene()
-            .validate()
-            .map_err(|e| PaperError::Engine(e.to_string()))?;
-            let exact = impact_wave::simulate(&rod, &impact_wave::WaveConfig::default())
-                .map_err(|e| PaperError::Engine(e.to_string()))?;
+            .validate()?;
+            let exact = impact_wave::simulate(&rod, &impact_wave::WaveConfig::default())?;
             Ok((x, rigid_bottom(x).restitution, exact.restitution))
         })
         .collect::<Result<_, PaperError>>()?;

@@ -8,18 +8,14 @@ use impact_model::Bilayer;
 use std::path::Path;
 
 pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
-    let rod = Bilayer { x: 0.3, alpha: 0.3 }
-        .scene()
-        .validate()
-        .map_err(|e| PaperError::Engine(e.to_string()))?;
+    let rod = Bilayer { x: 0.3, alpha: 0.3 }.scene().validate()?;
     let settings = if s.label == "full" {
         CostSettings::standard()
     } else {
         CostSettings::tiny()
     };
-    let r = cost_study("x = 0.3, alpha = 0.3", &rod, &settings, &|_| {})
-        .map_err(|e| PaperError::Engine(e.to_string()))?;
-    write_report(&dir.join("cost"), &r).map_err(|e| PaperError::Engine(e.to_string()))?;
+    let r = cost_study("x = 0.3, alpha = 0.3", &rod, &settings, &|_| {})?;
+    write_report(&dir.join("cost"), &r)?;
     let n_study: Vec<(f64, f64)> = r
         .chain
         .iter()

@@ -15,8 +15,7 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
         layers: vec![Layer::elastic(1.0, 1.0, 1.0)],
         wall_contact: None,
     }
-    .validate()
-    .map_err(|e| PaperError::Engine(e.to_string()))?;
+    .validate()?;
     let errors: Vec<(f64, f64)> = s
         .fig11_sizes
         .par_iter()
@@ -29,7 +28,7 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
                 },
             )
             .map(|o| (n as f64, 1.0 - o.restitution))
-            .map_err(|e| PaperError::Engine(e.to_string()))
+            .map_err(PaperError::from)
         })
         .collect::<Result<_, _>>()?;
     let (p, c) = power_fit(&errors);

@@ -28,8 +28,7 @@ fn run_one(tau: f64, masses: usize, law: WallContact) -> Result<Run, PaperError>
         layers: vec![layer],
         wall_contact: Some(law),
     }
-    .validate()
-    .map_err(|e| PaperError::Engine(e.to_string()))?;
+    .validate()?;
     let config = ChainConfig {
         masses,
         record: ChainRecord {
@@ -38,8 +37,8 @@ fn run_one(tau: f64, masses: usize, law: WallContact) -> Result<Run, PaperError>
         },
         ..ChainConfig::default()
     };
-    let mut e = ChainEngine::new(&rod, config).map_err(|e| PaperError::Engine(e.to_string()))?;
-    let o = e.run().map_err(|e| PaperError::Engine(e.to_string()))?;
+    let mut e = ChainEngine::new(&rod, config)?;
+    let o = e.run()?;
     let wall: Vec<(f64, f64)> = e
         .recording()
         .wall

@@ -18,12 +18,8 @@ pub fn run(dir: &Path, _: &Settings) -> Result<Item, PaperError> {
     let mut figures = Vec::new();
     let mut claims = Vec::new();
     for (label, x, alpha, (k1, k2)) in cases {
-        let rod = Bilayer::new(x, alpha)
-            .map_err(|e| PaperError::Engine(e.to_string()))?
-            .scene()
-            .validate()
-            .map_err(|e| PaperError::Engine(e.to_string()))?;
-        let run = exact_run(&rod).map_err(|e| PaperError::Engine(e.to_string()))?;
+        let rod = Bilayer::new(x, alpha)?.scene().validate()?;
+        let run = exact_run(&rod)?;
         let o = run.outcome.clone();
         let (t1, t2) = (o.transit_times[0], o.transit_times[1]);
         let d = Diagram {

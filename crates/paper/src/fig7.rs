@@ -15,13 +15,9 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
         .map(|&a| {
             let mut best = (f64::INFINITY, 0.0);
             for &x in &xs {
-                let rod = Bilayer { x, alpha: a }
-                    .scene()
-                    .validate()
-                    .map_err(|e| PaperError::Engine(e.to_string()))?;
-                let e = impact_wave::simulate(&rod, &impact_wave::WaveConfig::default())
-                    .map_err(|e| PaperError::Engine(e.to_string()))?
-                    .restitution;
+                let rod = Bilayer { x, alpha: a }.scene().validate()?;
+                let e =
+                    impact_wave::simulate(&rod, &impact_wave::WaveConfig::default())?.restitution;
                 if e < best.0 - 1e-12 {
                     best = (e, x);
                 }

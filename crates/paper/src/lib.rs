@@ -30,6 +30,16 @@ pub enum PaperError {
     Plot(#[from] impact_plot::PlotError),
     #[error(transparent)]
     Io(#[from] std::io::Error),
+    #[error(transparent)]
+    Scene(#[from] impact_model::SceneError),
+    #[error(transparent)]
+    Wave(#[from] impact_wave::WaveError),
+    #[error(transparent)]
+    Chain(#[from] impact_chain::ChainError),
+    #[error(transparent)]
+    Cost(#[from] impact_cost::CostError),
+    /// A figure's own failure, in words (and, until those modules are
+    /// split, the engine errors of `maps.rs` and `visco.rs`).
     #[error("{0}")]
     Engine(String),
 }

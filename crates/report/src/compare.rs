@@ -2,7 +2,7 @@
 //! more sizes, and a verdict on any disagreement.
 
 use impact_chain::ChainConfig;
-use impact_model::{Bilayer, Outcome};
+use impact_model::{Bilayer, Outcome, Timed};
 use impact_wave::WaveConfig;
 use serde::{Deserialize, Serialize};
 
@@ -18,7 +18,8 @@ pub struct CompareSettings {
     pub restitution_tolerance: f64,
     /// `|reduced t_c difference|` above this is a contact-class change.
     pub contact_time_tolerance: f64,
-    /// Keep wall-clock times in the outcomes (they differ between runs).
+    /// Time each run (the times differ between runs; without timing each
+    /// is written as 0, so identical runs give identical reports).
     pub timing: bool,
 }
 
@@ -111,9 +112,9 @@ impl Verdict {
 pub struct ComparePoint {
     pub x: f64,
     pub alpha: f64,
-    pub exact: Option<Outcome>,
+    pub exact: Option<Timed<Outcome>>,
     /// The chain at each size of `sizes`.
-    pub chain: Vec<Outcome>,
+    pub chain: Vec<Timed<Outcome>>,
     pub sizes: Vec<usize>,
     /// `e_chain - e_exact` at each size.
     pub restitution_difference: Vec<f64>,
@@ -143,7 +144,10 @@ impl ComparePoint {
 
     /// The finest chain outcome (none when any size failed).
     pub fn finest(&self) -> Option<&Outcome> {
-        self.chain.last().filter(|_| self.complete())
+        self.chain
+            .last()
+            .map(|t| &t.value)
+            .filter(|_| self.complete())
     }
 
     /// `e_chain - e_exact` at the finest size (none when any size failed).
@@ -184,14 +188,9 @@ pub fn compare_point(point: Bilayer, settings: &CompareSettings) -> ComparePoint
             return result;
         }
     };
-    let clean = |mut o: Outcome| {
-        if !settings.timing {
-            o.elapsed_seconds = 0.0;
-        }
-        o
-    };
-    let exact = match impact_wave::simulate(&rod, &settings.wave) {
-        Ok(o) => clean(o),
+    let clock = |o: Timed<Outcome>| if settings.timing { o } else { o.untimed() };
+    let exact = match Timed::try_measure(|| impact_wave::simulate(&rod, &settings.wave)) {
+        Ok(o) => clock(o),
         Err(e) => {
             result.error = Some(format!("exact engine: {e}"));
             return result;
@@ -202,8 +201,8 @@ pub fn compare_point(point: Bilayer, settings: &CompareSettings) -> ComparePoint
             masses: n,
             ..settings.chain.clone()
         };
-        match impact_chain::simulate(&rod, &config) {
-            Ok(o) => result.chain.push(clean(o)),
+        match Timed::try_measure(|| impact_chain::simulate(&rod, &config)) {
+            Ok(o) => result.chain.push(clock(o)),
             Err(e) => {
                 result.error = Some(format!("chain at N = {n}: {e}"));
                 result.exact = Some(exact);
@@ -224,8 +223,8 @@ pub fn compare_point(point: Bilayer, settings: &CompareSettings) -> ComparePoint
         });
     }
     result.observed_order = observed_order(&settings.sizes, &result.restitution_difference);
-    result.extrapolated_restitution =
-        extrapolate(&settings.sizes, &result.chain, result.observed_order);
+    let chain: Vec<Outcome> = result.chain.iter().map(|t| t.value.clone()).collect();
+    result.extrapolated_restitution = extrapolate(&settings.sizes, &chain, result.observed_order);
     result.exact = Some(exact);
     result.boundary_distance = boundary_distance(point, &result, settings);
     result.verdict = classify(&result, settings);

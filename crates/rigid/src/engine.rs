@@ -12,8 +12,18 @@
 
 use crate::exppoly::ExpPoly;
 use crate::stack::{Lane, scatter};
-use impact_model::{ContactHistory, EngineKind, ErrorEstimate, Outcome, Rod, StopReason};
+use impact_model::escape::{EscapeBound, Margin, internal_energy};
+use impact_model::{
+    Allowed, ContactHistory, EngineKind, ErrorEstimate, Outcome, Rod, SettingError, StopReason,
+};
 use thiserror::Error;
+
+/// The escape bound's margins ([`impact_model::escape`]), as the exact
+/// engine's: relative on the energy balance, and an absolute floor of this
+/// many impact-speed-times-`sum(t_i)` above the rounding of the
+/// centre-of-mass displacement. A margin only makes the model stop later.
+const BALANCE_MARGIN: f64 = 1e-9;
+const ROUNDING_MARGIN: f64 = 1e-12;
 
 /// When to stop.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -46,6 +56,18 @@ pub struct RigidConfig {
     pub max_events: u64,
 }
 
+impl RigidConfig {
+    /// The settings' ranges, checked once, here: by the model, and by a
+    /// caller that wants to refuse bad settings before running anything.
+    pub fn check(&self) -> Result<(), SettingError> {
+        if let RigidStop::Horizon { factor } = self.stop {
+            Allowed::Positive.check("horizon", factor)?;
+        }
+        Allowed::UnitFraction.check("rest_ratio", self.rest_ratio)?;
+        Ok(())
+    }
+}
+
 impl Default for RigidConfig {
     fn default() -> Self {
         Self {
@@ -61,12 +83,8 @@ impl Default for RigidConfig {
 pub enum RigidError {
     #[error("layers[{layer}] is viscous: the rigid-bottom model has elastic layers only")]
     ViscousLayer { layer: usize },
-    #[error("invalid setting: {field} must be {allowed} (got {value})")]
-    Setting {
-        field: &'static str,
-        allowed: &'static str,
-        value: f64,
-    },
+    #[error("invalid setting: {0}")]
+    Setting(#[from] SettingError),
     #[error(
         "the rigid-bottom model stopped after {events} events at t = {time:.6e} without the rod leaving for good"
     )]
@@ -104,8 +122,9 @@ pub struct RigidBottom {
     /// Centre-of-mass displacement up to the current piece's start.
     displacement: f64,
     energy: f64,
-    /// `sqrt(integral over the stack of m(s)^2 / E) / M`.
-    escape_per_energy: f64,
+    /// The escape bound, from the stack's `integral m(s)^2 / E` (the rigid
+    /// bottom adds no compliance) and the whole mass.
+    escape: EscapeBound<f64>,
     /// Contacts, in the scene's units.
     history: ContactHistory,
     horizon: f64,
@@ -131,13 +150,7 @@ impl RigidBottom {
         if let Some(i) = rod.scene().layers.iter().position(|l| l.is_viscous()) {
             return Err(RigidError::ViscousLayer { layer: i });
         }
-        if !(config.rest_ratio.is_finite() && (0.0..1.0).contains(&config.rest_ratio)) {
-            return Err(RigidError::Setting {
-                field: "rest_ratio",
-                allowed: "a number in [0, 1)",
-                value: config.rest_ratio,
-            });
-        }
+        config.check()?;
         let layers = rod.scaled_layers();
         let n = layers.len();
         let vb = rod.scaled_impact_speed();
@@ -186,7 +199,7 @@ impl RigidBottom {
             impulse: 0.0,
             displacement: 0.0,
             energy: 0.5 * total_mass * vb * vb,
-            escape_per_energy: compliance.sqrt() / total_mass,
+            escape: EscapeBound::new(compliance, total_mass),
             history: ContactHistory::new(),
             horizon,
             stop: config.stop,
@@ -314,13 +327,13 @@ impl RigidBottom {
             return None;
         };
         let v = self.centre_velocity(self.impulse);
-        if v <= 0.0 {
-            return None;
-        }
-        let internal = (self.energy - 0.5 * self.total_mass * v * v).max(0.0);
-        let bound = self.escape_per_energy * (2.0 * internal).sqrt() * (1.0 + 1e-9)
-            + 1e-12 * self.impact_speed * self.span;
-        Some(t0 + (bound - self.displacement).max(0.0) / v)
+        let internal = internal_energy(self.energy, self.total_mass, v);
+        let margin = Margin {
+            relative: BALANCE_MARGIN,
+            absolute: ROUNDING_MARGIN * self.impact_speed * self.span,
+        };
+        let reach = self.escape.reach(internal, margin);
+        EscapeBound::escape_time(t0, reach, self.displacement, v)
     }
 
     /// Processes the next event; false once stopped.
@@ -368,11 +381,7 @@ impl RigidBottom {
         if until >= self.horizon {
             self.now = self.horizon;
             self.close_piece(self.horizon);
-            self.stopped = Some(if self.history.in_contact() {
-                StopReason::HorizonInContact
-            } else {
-                StopReason::Horizon
-            });
+            self.stopped = Some(StopReason::at_horizon(self.history.in_contact()));
             return Ok(false);
         }
         let Some((t, lane)) = arrival else {

@@ -23,9 +23,7 @@ use impact_model::{Outcome, Rod};
 
 /// Runs the model to the end.
 pub fn simulate(rod: &Rod, config: &RigidConfig) -> Result<Outcome, RigidError> {
-    let start = std::time::Instant::now();
     let mut outcome = RigidBottom::new(rod, config)?.run()?;
-    outcome.elapsed_seconds = start.elapsed().as_secs_f64();
     outcome.wall_contact = rod.wall_contact();
     Ok(outcome)
 }

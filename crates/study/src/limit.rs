@@ -10,7 +10,7 @@
 
 use impact_chain::{ChainConfig, ChainEngine, ChainError, ChainRecord, ChainRecording};
 use impact_model::richardson::{Extrapolation, extrapolate};
-use impact_model::{Outcome, Rod};
+use impact_model::{Allowed, Outcome, Rod, SettingError};
 
 /// How far to refine.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -21,6 +21,19 @@ pub struct LimitSettings {
     pub target: Option<f64>,
     /// Never run a chain larger than this.
     pub max_masses: usize,
+}
+
+impl LimitSettings {
+    /// The settings' ranges: a chain of at least one mass, and a target
+    /// error above zero.
+    pub fn check(&self) -> Result<(), SettingError> {
+        Allowed::AtLeast(1).check_count("base_masses", self.base_masses as u64)?;
+        Allowed::AtLeast(1).check_count("max_masses", self.max_masses as u64)?;
+        if let Some(target) = self.target {
+            Allowed::Positive.check("target", target)?;
+        }
+        Ok(())
+    }
 }
 
 impl Default for LimitSettings {
@@ -62,11 +75,10 @@ pub fn chain_limit(
             ..config.clone()
         };
         let mut engine = ChainEngine::new(rod, config)?;
-        let mut outcome = engine.run()?;
-        outcome.elapsed_seconds = 0.0;
+        let outcome = engine.run()?;
         Ok((outcome, engine.recording().clone()))
     };
-    let start = std::time::Instant::now();
+    settings.check()?;
     let n = settings.base_masses;
     let (coarse, finest) = rayon::join(
         || run(n, false).and_then(|a| Ok((a, run(2 * n, false)?))),
@@ -93,8 +105,6 @@ pub fn chain_limit(
     }
     let target_met = settings.target.map(|t| x.error <= t);
     outcome.extrapolation = Some(x);
-    // the whole ladder's time
-    outcome.elapsed_seconds = start.elapsed().as_secs_f64();
     Ok(ChainLimit {
         outcome,
         recording,

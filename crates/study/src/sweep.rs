@@ -1,10 +1,26 @@
 //! Parallel sweeps over a grid, one row per point in grid order.
 
-use impact_chain::ChainConfig;
-use impact_model::{Bilayer, Outcome, Scene, WallContact};
-use impact_rigid::RigidConfig;
-use impact_wave::WaveConfig;
+use impact_chain::{ChainConfig, ChainError};
+use impact_model::{Bilayer, Outcome, Scene, SceneError, SettingError, Timed, WallContact};
+use impact_rigid::{RigidConfig, RigidError};
+use impact_wave::{WaveConfig, WaveError};
 use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+/// Why one impact of a study could not run or finish: the engine's own
+/// error, kept typed until it is written out (a row's `error` cell reads
+/// exactly as the engine worded it).
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum RunError {
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    #[error(transparent)]
+    Wave(#[from] WaveError),
+    #[error(transparent)]
+    Chain(#[from] ChainError),
+    #[error(transparent)]
+    Rigid(#[from] RigidError),
+}
 
 /// The engine a sweep runs, with its validated settings.
 #[derive(Debug, Clone, serde::Serialize)]
@@ -54,23 +70,28 @@ impl Engine {
         }
     }
 
-    /// Runs one impact.
-    pub fn simulate(&self, rod: &impact_model::Rod) -> Result<Outcome, String> {
+    /// The settings' ranges, checked by the engine's own rule: a caller can
+    /// refuse bad settings before running anything.
+    pub fn check(&self) -> Result<(), SettingError> {
         match self {
-            Engine::Wave(config) => impact_wave::simulate(rod, config).map_err(|e| e.to_string()),
-            Engine::Chain(config) => impact_chain::simulate(rod, config).map_err(|e| e.to_string()),
-            Engine::RigidBottom(config) => {
-                impact_rigid::simulate(rod, config).map_err(|e| e.to_string())
-            }
+            Engine::Wave(config) => config.check(),
+            Engine::Chain(config) => config.check(),
+            Engine::RigidBottom(config) => config.check(),
         }
     }
 
+    /// Runs one impact.
+    pub fn simulate(&self, rod: &impact_model::Rod) -> Result<Outcome, RunError> {
+        Ok(match self {
+            Engine::Wave(config) => impact_wave::simulate(rod, config)?,
+            Engine::Chain(config) => impact_chain::simulate(rod, config)?,
+            Engine::RigidBottom(config) => impact_rigid::simulate(rod, config)?,
+        })
+    }
+
     /// Runs one canonical bilayer point.
-    pub fn run(&self, point: Bilayer, viscosity: &BilayerViscosity) -> Result<Outcome, String> {
-        let rod = viscosity
-            .scene(point)
-            .validate()
-            .map_err(|e| e.to_string())?;
+    pub fn run(&self, point: Bilayer, viscosity: &BilayerViscosity) -> Result<Outcome, RunError> {
+        let rod = viscosity.scene(point).validate()?;
         self.simulate(&rod)
     }
 }
@@ -110,7 +131,7 @@ impl Row {
         point: Bilayer,
         engine: &'static str,
         wall_contact: WallContact,
-        result: Result<Outcome, String>,
+        result: Result<Timed<Outcome>, RunError>,
         timing: bool,
     ) -> Self {
         let mut row = Row {
@@ -136,7 +157,7 @@ impl Row {
             error: None,
         };
         match result {
-            Ok(o) => {
+            Ok(Timed { value: o, seconds }) => {
                 row.restitution = Some(o.restitution);
                 row.contact_time = Some(o.contact_time);
                 row.reduced_contact_time = Some(o.reduced_contact_time);
@@ -159,9 +180,9 @@ impl Row {
                 row.dropped_fronts = o.truncation.map(|t| t.dropped_fronts);
                 row.merged_fronts = o.truncation.map(|t| t.merged_fronts);
                 row.error_bound = o.error_bound;
-                row.elapsed_seconds = timing.then_some(o.elapsed_seconds);
+                row.elapsed_seconds = timing.then_some(seconds);
             }
-            Err(e) => row.error = Some(e),
+            Err(e) => row.error = Some(e.to_string()),
         }
         row
     }
@@ -265,7 +286,8 @@ impl RowFormat {
 /// The row of one point.
 pub fn sweep_row(p: Bilayer, engine: &Engine, viscosity: &BilayerViscosity, timing: bool) -> Row {
     let law = viscosity.wall_contact.unwrap_or_default();
-    Row::new(p, engine.name(), law, engine.run(p, viscosity), timing)
+    let result = Timed::try_measure(|| engine.run(p, viscosity));
+    Row::new(p, engine.name(), law, result, timing)
 }
 
 /// Runs every point in parallel (through [`crate::par_map`]); rows come back
@@ -320,13 +342,15 @@ mod tests {
             },
             "wave",
             WallContact::Paper,
-            Engine::Wave(WaveConfig::default()).run(
-                Bilayer {
-                    x: 0.4,
-                    alpha: 0.05,
-                },
-                &BilayerViscosity::default(),
-            ),
+            Timed::try_measure(|| {
+                Engine::Wave(WaveConfig::default()).run(
+                    Bilayer {
+                        x: 0.4,
+                        alpha: 0.05,
+                    },
+                    &BilayerViscosity::default(),
+                )
+            }),
             true,
         );
         assert_eq!(
@@ -341,7 +365,7 @@ mod tests {
             },
             "wave",
             WallContact::Paper,
-            Err("no".into()),
+            Err(RunError::Wave(WaveError::TimeLimit { time: 1.0 })),
             true,
         );
         assert_eq!(
@@ -355,9 +379,9 @@ mod tests {
             },
             "wave",
             WallContact::Paper,
-            Err("a, \"b\"".into()),
+            Err(RunError::Scene(SceneError::Json("a, \"b\"".into()))),
             false,
         );
-        assert!(failed.csv(false).ends_with("\"a, \"\"b\"\"\""));
+        assert!(failed.csv(false).ends_with("\"scene JSON: a, \"\"b\"\"\""));
     }
 }

@@ -1,5 +1,9 @@
 //! Settings of the exact engine. Physical inputs live in the scene; these are
-//! numerical knobs, each with the reason for its default.
+//! numerical knobs, each with the reason for its default and its range
+//! (checked here, once, for the engine and for callers that want to refuse
+//! bad settings before running anything).
+
+use impact_model::{Allowed, SettingError};
 
 /// When to stop a run.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -130,5 +134,56 @@ impl Default for WaveConfig {
             max_time_factor: 1e4,
             record: Record::default(),
         }
+    }
+}
+
+/// The coarsest lattice a lane may have (fraction of its transit): a front
+/// deposited on the lattice point before its birth must still arrive after
+/// it was born.
+pub(crate) const COARSEST: f64 = 0.5;
+
+impl WaveConfig {
+    /// The ranges [`crate::simulate`] and [`crate::solve`] accept. A merged
+    /// resolution's error is measured on a lattice twice as coarse, which
+    /// may be at most [`COARSEST`]: its window is at most half that, and
+    /// above zero (twice a zero window is no coarser lattice).
+    pub fn check(&self) -> Result<(), SettingError> {
+        self.check_ranges(Allowed::PositiveUpTo(COARSEST / 2.0))
+    }
+
+    /// The ranges one engine run accepts ([`crate::WaveEngine::new`]): any
+    /// lattice up to [`COARSEST`], as the merged ladder's coarser levels use.
+    pub(crate) fn check_engine(&self) -> Result<(), SettingError> {
+        self.check_ranges(Allowed::NonNegativeUpTo(COARSEST))
+    }
+
+    fn check_ranges(&self, merge_window: Allowed) -> Result<(), SettingError> {
+        Allowed::AtLeast(1).check_count("max_events", self.max_events)?;
+        Allowed::NonNegative.check("drop_tolerance", self.drop_tolerance)?;
+        Allowed::NonNegative.check("simultaneity", self.simultaneity)?;
+        Allowed::NonNegative.check("grazing_tolerance", self.grazing_tolerance)?;
+        Allowed::Positive.check("max_time_factor", self.max_time_factor)?;
+        if let StopRule::Horizon { factor } = self.stop {
+            Allowed::Positive.check("horizon", factor)?;
+        }
+        match self.resolution {
+            Resolution::Exact => {}
+            Resolution::Auto {
+                budget_events,
+                target,
+                ..
+            } => {
+                Allowed::AtLeast(1).check_count("budget_events", budget_events)?;
+                Allowed::Positive.check("target", target)?;
+            }
+            Resolution::Merged {
+                per_transit,
+                per_longest,
+            } => {
+                merge_window.check("per_transit", per_transit)?;
+                Allowed::NonNegative.check("per_longest", per_longest)?;
+            }
+        }
+        Ok(())
     }
 }

@@ -13,10 +13,10 @@ use crate::queue::{EventInPast, EventKey, EventQueue};
 use crate::real::Real;
 use crate::record::{FrontRecord, Recording, WallSample};
 use crate::wall::{self, ContactState};
+use impact_model::escape::{EscapeBound, Margin, internal_energy};
 use impact_model::{
     ContactHistory, EngineKind, InterfaceCoefficients, Outcome, Rod, StopReason, Truncation, Units,
 };
-use std::time::Instant;
 
 /// The merge rule of a lane, from its layer's transit time and wave speed.
 type LaneRule<R> = dyn Fn(f64, f64) -> MergeRule<R>;
@@ -65,6 +65,21 @@ const KEEP_ABOVE: f64 = 1e-2;
 /// decides contacts (the impact front, a landing's front), while the many
 /// small ones they shed are deposited on the lattice.
 const KEEP_AT_MOST: usize = 8;
+
+/// The escape bound's margins ([`impact_model::escape`]). A margin only
+/// makes a run stop later (a few more events), never wrongly, so each is
+/// set well above what it covers. Relative, on the energy balance: the
+/// dropped fronts may leave the true internal energy a hair above the
+/// balance `M (v_b^2 - v^2) / 2` used to schedule the stop.
+const BALANCE_MARGIN: f64 = 1e-9;
+/// Absolute, in impact-speed-times-`sum(t_i)`: above the rounding of the
+/// centre-of-mass displacement, so a rod with no internal energy left
+/// (`D = 0`) still stops only once it has risen clear of it.
+const ROUNDING_MARGIN: f64 = 1e-12;
+/// Relative, when the bound is checked on a merged field: the merged
+/// field's energy and the bottom's offset are those of the deposited fronts,
+/// which differ a little from the exact balance; a failed check reschedules.
+const MERGED_FIELD_MARGIN: f64 = 1e-6;
 
 /// One layer's constants in internal units.
 #[derive(Debug, Clone, Copy)]
@@ -137,9 +152,8 @@ pub struct Tracer<R: Real> {
     pub(crate) history: ContactHistory,
     pub(crate) impact_speed: R,
     pub(crate) mass: R,
-    /// `sqrt(integral(m^2/E)) / M`: the escape bound per unit of
-    /// `sqrt(2 E_int)` (DESIGN.md §2).
-    escape_margin_per_energy: R,
+    /// The escape bound of the rod (DESIGN.md §2), in the run's arithmetic.
+    escape: EscapeBound<R>,
     pub(crate) simultaneity: R,
     pub(crate) grazing_strain: R,
     pub(crate) merged: bool,
@@ -188,7 +202,7 @@ impl<R: Real> Tracer<R> {
         if let Some(i) = rod.scene().layers.iter().position(|l| l.is_viscous()) {
             return Err(WaveError::ViscousLayer { layer: i });
         }
-        crate::error::check_settings(&config)?;
+        config.check_engine()?;
         let scaled = rod.scaled_layers();
         let units = *rod.units();
         let of = R::of;
@@ -274,8 +288,7 @@ impl<R: Real> Tracer<R> {
             history: ContactHistory::new(),
             impact_speed: vb,
             mass: of(rod.scaled_mass()),
-            escape_margin_per_energy: of(rod.scaled_compliance_moment()).sqrt()
-                / of(rod.scaled_mass()),
+            escape: EscapeBound::new(of(rod.scaled_compliance_moment()), of(rod.scaled_mass())),
             simultaneity,
             grazing_strain: of(config.grazing_tolerance) * vb / c0,
             merged,
@@ -623,11 +636,7 @@ impl<R: Real> Tracer<R> {
             }
             EventKey::Horizon => {
                 self.queue.pop();
-                let reason = if self.history.in_contact() {
-                    StopReason::HorizonInContact
-                } else {
-                    StopReason::Horizon
-                };
+                let reason = StopReason::at_horizon(self.history.in_contact());
                 self.finish(t, reason)
             }
         };
@@ -728,25 +737,29 @@ impl<R: Real> Tracer<R> {
     }
 
     /// After a separation with the centre of mass moving up, schedules the
-    /// time from which no reconnection is possible: the bottom satisfies
-    /// `z0 >= w_cm - D`, `D = sqrt(integral(m^2/E)) sqrt(2 E_int) / M`.
+    /// time from which no reconnection is possible
+    /// ([`impact_model::escape`]), from the exact energy balance: the rod's
+    /// energy is still `M v_b^2 / 2`, so `E_int = M (v_b^2 - v^2) / 2`.
     fn schedule_escape(&mut self, t: R) -> Result<(), WaveError> {
-        let v = self.centre_of_mass_velocity();
-        if v <= R::zero() || self.stop_rule != StopRule::Escape {
+        if self.stop_rule != StopRule::Escape {
             return Ok(());
         }
+        let v = self.centre_of_mass_velocity();
         let of = R::of;
         let internal = (of(0.5) * self.mass * (self.impact_speed.powi(2) - v * v)).max(R::zero());
-        // 1e-9 relative margin: the dropped fronts may leave the true internal
-        // energy a hair above the balance used here.
         let transits: R = self
             .layers
             .iter()
             .fold(R::zero(), |s, l| s + l.length / l.wave_speed);
-        let margin = self.escape_margin_per_energy * (of(2.0) * internal).sqrt() * of(1.0 + 1e-9)
-            + of(1e-12) * self.impact_speed * transits;
-        let rise = margin - self.centre_of_mass_displacement();
-        let at = t + rise.max(R::zero()) / v;
+        let margin = Margin {
+            relative: BALANCE_MARGIN,
+            absolute: of(ROUNDING_MARGIN) * self.impact_speed * transits,
+        };
+        let reach = self.escape.reach(internal, margin);
+        let rise = self.centre_of_mass_displacement();
+        let Some(at) = EscapeBound::escape_time(t, reach, rise, v) else {
+            return Ok(());
+        };
         self.queue
             .schedule(EventKey::Escape, at, self.now)
             .map_err(past)
@@ -755,9 +768,8 @@ impl<R: Real> Tracer<R> {
     /// With merged fronts, energy and momentum are those of the merged
     /// field, which may differ a little from the exact balance the escape
     /// time was computed from. Checks the bound on the field itself (the
-    /// bottom's offset from the centre of mass can never exceed
-    /// `D = sqrt(integral(m^2/E)) sqrt(2 E_int) / M`) and reschedules when
-    /// it does not hold yet.
+    /// bottom's offset from the centre of mass can never exceed `D`) and
+    /// reschedules when it does not hold yet.
     fn escape_confirmed(&mut self) -> Result<bool, WaveError> {
         let t = self.now;
         self.advance_wall(t);
@@ -765,19 +777,19 @@ impl<R: Real> Tracer<R> {
             return Ok(false);
         };
         let fields = self.field_state();
-        let m = self.mass;
-        let v = fields.momentum / m;
-        let internal = (fields.energy - R::of(0.5) * m * v * v).max(R::zero());
-        let d = self.escape_margin_per_energy * (R::of(2.0) * internal).sqrt() * R::of(1.0 + 1e-6);
-        // height of the centre of mass above the wall, minus the bound
-        let clearance = h + fields.bottom_below_centre - d;
-        if clearance > R::zero() && v > R::zero() {
+        let v = fields.momentum / self.mass;
+        let internal = internal_energy(fields.energy, self.mass, v);
+        let reach = self
+            .escape
+            .reach(internal, Margin::relative(MERGED_FIELD_MARGIN));
+        // height of the centre of mass above the wall
+        let rise = h + fields.bottom_below_centre;
+        if rise > reach && v > R::zero() {
             return Ok(true);
         }
-        if v > R::zero() {
-            let at = t + (-clearance).max(R::zero()) / v + self.simultaneity;
+        if let Some(at) = EscapeBound::escape_time(t, reach, rise, v) {
             self.queue
-                .schedule(EventKey::Escape, at, self.now)
+                .schedule(EventKey::Escape, at + self.simultaneity, self.now)
                 .map_err(past)?;
         }
         Ok(false)
@@ -843,16 +855,13 @@ impl<R: Real> Tracer<R> {
 
     /// Steps until the run stops.
     pub fn run(&mut self) -> Result<Outcome, WaveError> {
-        let start = Instant::now();
         while self.stopped.is_none() {
             self.step()?;
         }
-        let mut outcome = self.outcome();
-        outcome.elapsed_seconds = start.elapsed().as_secs_f64();
-        Ok(outcome)
+        Ok(self.outcome())
     }
 
-    /// The observables at the current time (`elapsed_seconds` left at 0).
+    /// The observables at the current time.
     pub fn outcome(&self) -> Outcome {
         let mut o = Outcome::from_history(
             EngineKind::Wave,

@@ -3,15 +3,19 @@
 //! rounding. One algorithm, two precisions: the rerun differs from the
 //! original only in the rounding of each operation.
 
+use impact_model::escape::Arithmetic;
 use ordered_float::OrderedFloat;
 use std::fmt::Debug;
 use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 use twofloat::TwoFloat;
 
 /// A real number type the tracer can run in: the field operations and the
-/// few functions the tracer calls, nothing more.
+/// few functions the tracer calls, nothing more. Conversion from a double
+/// (`of`) and `sqrt` come from the model's [`Arithmetic`], so the model's
+/// shared formulas (the escape bound) run in the tracer's precision.
 pub trait Real:
-    Copy
+    Arithmetic
+    + Copy
     + Debug
     + Default
     + PartialEq
@@ -30,8 +34,6 @@ pub trait Real:
     /// A totally ordered image of the number, for the event queue
     /// (`ordered-float` over its double parts).
     type Key: Ord + Copy + Debug;
-    /// From a double (exact).
-    fn of(x: f64) -> Self;
     /// To the nearest double.
     fn to_f64(self) -> f64;
     /// The number's key: keys order as the numbers do.
@@ -54,7 +56,6 @@ pub trait Real:
     fn floor(self) -> Self;
     fn ceil(self) -> Self;
     fn round(self) -> Self;
-    fn sqrt(self) -> Self;
     fn ln(self) -> Self;
     fn powi(self, n: i32) -> Self;
     fn powf(self, n: Self) -> Self;
@@ -89,10 +90,6 @@ impl Real for f64 {
         key.0
     }
     #[inline(always)]
-    fn of(x: f64) -> Self {
-        x
-    }
-    #[inline(always)]
     fn to_f64(self) -> f64 {
         self
     }
@@ -120,10 +117,6 @@ impl Real for f64 {
     #[inline(always)]
     fn round(self) -> Self {
         f64::round(self)
-    }
-    #[inline(always)]
-    fn sqrt(self) -> Self {
-        f64::sqrt(self)
     }
     #[inline(always)]
     fn ln(self) -> Self {
@@ -229,6 +222,16 @@ impl SubAssign for DoubleDouble {
     }
 }
 
+impl Arithmetic for DoubleDouble {
+    #[inline]
+    fn of(x: f64) -> Self {
+        DoubleDouble(TwoFloat::from(x))
+    }
+    fn sqrt(self) -> Self {
+        DoubleDouble(self.0.sqrt())
+    }
+}
+
 impl Real for DoubleDouble {
     /// A normalised double-double orders as its (high, low) parts do.
     type Key = (OrderedFloat<f64>, OrderedFloat<f64>);
@@ -237,10 +240,6 @@ impl Real for DoubleDouble {
     }
     fn from_key(key: Self::Key) -> Self {
         DoubleDouble(TwoFloat::try_from((key.0.0, key.1.0)).unwrap_or(TwoFloat::from(key.0.0)))
-    }
-    #[inline]
-    fn of(x: f64) -> Self {
-        DoubleDouble(TwoFloat::from(x))
     }
     #[inline]
     fn to_f64(self) -> f64 {
@@ -258,9 +257,6 @@ impl Real for DoubleDouble {
     }
     fn round(self) -> Self {
         DoubleDouble(self.0.round())
-    }
-    fn sqrt(self) -> Self {
-        DoubleDouble(self.0.sqrt())
     }
     /// `twofloat`'s logarithm (about `1e-18` relative): used only to count
     /// terms of geometric series, which are then checked with products.

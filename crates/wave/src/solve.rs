@@ -24,13 +24,12 @@
 //!   arithmetic, the repeat's value is reported, and the difference says
 //!   what double precision alone would have lost.
 
-use crate::config::{Precision, Resolution, WaveConfig};
+use crate::config::{COARSEST, Precision, Resolution, WaveConfig};
 use crate::engine::{Tracer, WaveEngine};
 use crate::error::WaveError;
 use crate::real::DoubleDouble;
 use crate::real::Real;
 use impact_model::{ErrorEstimate, Outcome, Rod, StopReason};
-use std::time::Instant;
 
 /// Relative rounding error per event assumed a priori: a few operations of
 /// relative error `2^-53` each. Tested against double-double reruns.
@@ -59,7 +58,7 @@ pub fn simulate(rod: &Rod, config: &WaveConfig) -> Result<Outcome, WaveError> {
 
 /// [`simulate`], keeping the engine of the reported run.
 pub fn solve(rod: &Rod, config: &WaveConfig) -> Result<Solution, WaveError> {
-    let start = Instant::now();
+    config.check()?;
     let mut parts = Vec::new();
     let (fine, merged) = match config.resolution {
         Resolution::Exact => (run::<f64>(rod, config.clone())?, None),
@@ -165,7 +164,6 @@ pub fn solve(rod: &Rod, config: &WaveConfig) -> Result<Solution, WaveError> {
     estimate.method = parts.join("; ");
     let mut outcome = outcome.with_error(estimate);
     outcome.wall_contact = rod.wall_contact();
-    outcome.elapsed_seconds = start.elapsed().as_secs_f64();
     Ok(Solution {
         outcome,
         engine: fine,
@@ -277,13 +275,6 @@ fn fixed_lattice(
         .map(|j| 2f64.powi(j))
         .filter(|f| f * p <= COARSEST)
         .collect();
-    if coarser.is_empty() {
-        return Err(WaveError::Setting {
-            field: "merge window per transit",
-            allowed: "at most 0.25 (its error is measured on a lattice twice as coarse, and a lattice may be at most 0.5 of a transit)",
-            value: p,
-        });
-    }
     let max = config.max_events;
     let ((fine, twin), coarse) = rayon::join(
         || {
@@ -362,11 +353,6 @@ fn ladder(
 
 /// The finest lattice a merged ladder goes down to (fraction of a transit).
 const FINEST: f64 = 1e-4;
-
-/// The coarsest lattice a lane may have (fraction of its transit,
-/// [`crate::engine`] refuses more): a front deposited on the lattice point
-/// before its birth must still arrive after it was born.
-pub(crate) const COARSEST: f64 = 0.5;
 
 /// An outcome that is final, or the reason it is not.
 fn finished<R: Real>(outcome: Outcome, engine: &Tracer<R>) -> Result<Outcome, WaveError> {
