@@ -6,7 +6,6 @@ use crate::output::write_atomically;
 use impact_chain::calibrate::{calibration_grid, calibration_point};
 use impact_model::calibration;
 use rayon::prelude::*;
-use std::io::Write;
 
 pub fn calibrate(a: CalibrateArgs) -> anyhow::Result<()> {
     let law = a.wall_contact;
@@ -46,39 +45,27 @@ pub fn calibrate(a: CalibrateArgs) -> anyhow::Result<()> {
         .out
         .clone()
         .unwrap_or_else(|| format!("data/calibration/kelvin-voigt-{law}.csv").into());
-    write_atomically(&out, |w| {
-        writeln!(
-            w,
-            "# Restitution of a homogeneous Kelvin-Voigt rod vs tau c / L (paper Sec. IV, Fig. 2)."
-        )?;
-        writeln!(w, "# Wall contact law: {}.", law.describe())?;
-        writeln!(
-            w,
-            "# Written by `impact calibrate --regenerate --wall-contact {law} --n {}` in {:.0} s.",
-            a.masses,
-            start.elapsed().as_secs_f64()
-        )?;
-        writeln!(
-            w,
-            "# Each entry: the chain at N = {} and {} masses, Richardson-extrapolated (first order in N);",
-            a.masses,
-            2 * a.masses
-        )?;
-        writeln!(
-            w,
-            "# richardson_correction is the size of that correction, an estimate of the error left."
-        )?;
-        writeln!(w, "tau_c_over_l,restitution,richardson_correction")?;
-        for p in &points {
-            let e = if p.tau_c_over_l == 0.0 {
-                1.0
-            } else {
-                p.restitution
-            };
-            writeln!(w, "{},{},{}", p.tau_c_over_l, e, p.correction)?;
-        }
-        Ok(())
-    })?;
+    let comment = format!(
+        "Restitution of a homogeneous Kelvin-Voigt rod vs tau c / L (paper Sec. IV, Fig. 2).\n\
+         Wall contact law: {}.\n\
+         Written by `impact calibrate --regenerate --wall-contact {law} --n {}` in {:.0} s.\n\
+         Each entry: the chain at N = {} and {} masses, Richardson-extrapolated (first order in N);\n\
+         richardson_correction is the size of that correction, an estimate of the error left.",
+        law.describe(),
+        a.masses,
+        start.elapsed().as_secs_f64(),
+        a.masses,
+        2 * a.masses
+    );
+    let entries: Vec<calibration::TableEntry> = points
+        .iter()
+        .map(|p| calibration::TableEntry {
+            tau_c_over_l: p.tau_c_over_l,
+            restitution: p.restitution,
+            richardson_correction: p.correction,
+        })
+        .collect();
+    write_atomically(&out, |w| calibration::write_table(w, &comment, &entries))?;
     eprintln!(
         "wrote {} in {:.1} s; rebuild to use it",
         out.display(),

@@ -5,10 +5,22 @@ use crate::input;
 use crate::output::{summary, write_atomically};
 use impact_chain::{ChainEngine, ChainLayout, ChainRecord};
 use impact_model::{Scene, Timed, WallSample};
+use impact_output::Plain;
 use impact_rigid::RigidError;
 use impact_study::{Engine, LimitSettings, chain_limit};
 use impact_wave::{Record, WaveError};
 use std::io::Write;
+
+/// One line of the wall trace: a [`WallSample`], numbers as `Display`
+/// writes them. Every engine records the impact, so the file always has
+/// its header.
+#[derive(serde::Serialize)]
+struct WallTraceLine {
+    time: Plain<f64>,
+    strain: Plain<f64>,
+    height: Plain<f64>,
+    velocity: Plain<f64>,
+}
 
 /// Reads and validates a scene file; every failure is an input error.
 pub fn read_scene(path: &std::path::Path) -> anyhow::Result<Scene> {
@@ -127,13 +139,13 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
         }
     };
     if let Some(path) = &a.wall_trace {
-        write_atomically(path, |w| {
-            writeln!(w, "time,strain,height,velocity")?;
-            for s in &wall {
-                writeln!(w, "{},{},{},{}", s.time, s.strain, s.height, s.velocity)?;
-            }
-            Ok(())
-        })?;
+        let lines = wall.iter().map(|s| WallTraceLine {
+            time: Plain(s.time),
+            strain: Plain(s.strain),
+            height: Plain(s.height),
+            velocity: Plain(s.velocity),
+        });
+        write_atomically(path, |w| impact_output::write_csv(w, lines))?;
     }
     let mut stdout = std::io::stdout().lock();
     if a.json {

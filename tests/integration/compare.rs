@@ -453,3 +453,37 @@ fn rerunning_a_shard_without_resume_keeps_its_journal() {
     ok(words, &[j.to_str().unwrap(), "--resume"]);
     assert!(std::fs::read_to_string(&j).unwrap().lines().count() >= 2);
 }
+
+/// A report directory appears whole: a re-run replaces the report (the
+/// second run's sizes are in it), keeps what the report does not write, and
+/// leaves no staging directory beside it.
+#[test]
+fn a_rerun_replaces_the_report_and_leaves_nothing_beside_it() {
+    let dir = scratch("cmp-rerun");
+    let out = dir.join("r");
+    for n in ["60", "80"] {
+        let rest = [n, "--no-timing", "--out", out.to_str().unwrap()];
+        ok("compare --x 0.3 --alpha 0.3 --n", &rest);
+        std::fs::write(out.join("notes.txt"), "mine").unwrap();
+    }
+    assert_eq!(files_in(&dir), ["r"]);
+    let mut expected: Vec<&str> = REPORT_FILES.to_vec();
+    expected.extend(["notes.txt", "points.jsonl"]);
+    expected.sort();
+    assert_eq!(files_in(&out), expected);
+    assert_eq!(report(&out)["settings"]["sizes"][0], 80);
+    // a report that cannot be written (its place is a file) leaves nothing
+    let blocked = dir.join("blocked");
+    std::fs::write(&blocked, "a file").unwrap();
+    let journal = out.join("points.jsonl");
+    let o = impact_words(
+        "merge",
+        &[
+            journal.to_str().unwrap(),
+            "--out",
+            blocked.to_str().unwrap(),
+        ],
+    );
+    assert!(!o.status.success());
+    assert_eq!(files_in(&dir), ["blocked", "r"]);
+}

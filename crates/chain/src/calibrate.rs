@@ -10,7 +10,7 @@ use impact_model::{Allowed, Layer, Scene, SettingError, WallContact};
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CalibrationPoint {
     pub tau_c_over_l: f64,
-    /// Extrapolated restitution.
+    /// Extrapolated restitution (exactly 1 for the elastic rod, `t = 0`).
     pub restitution: f64,
     /// Size of the Richardson correction: an estimate of the error left.
     pub correction: f64,
@@ -47,9 +47,13 @@ pub fn calibration_point(
     let coarse = homogeneous_restitution(t, n, law)?;
     let fine = homogeneous_restitution(t, 2 * n, law)?;
     let correction = fine - coarse;
+    // an elastic rod gives back all its energy: e = 1 exactly, where the
+    // chains' dispersion leaves the extrapolation a little off (the
+    // correction still says by how much the chains miss it)
+    let restitution = if t == 0.0 { 1.0 } else { fine + correction };
     Ok(CalibrationPoint {
         tau_c_over_l: t,
-        restitution: fine + correction,
+        restitution,
         correction,
     })
 }

@@ -4,7 +4,8 @@ use crate::CostError;
 use crate::chain::{ChainCost, ChainKind, ChainStudy, Headline};
 use crate::exact::ExactCost;
 use crate::growth::Growth;
-use impact_plot::{Axis, Colour, LinePlot, Marker, Scale, Series, escape, write_svg_and_png};
+use impact_output::{Head, Layout, ReportDir, Stylesheet, escape};
+use impact_plot::{Axis, Colour, LinePlot, Marker, Scale, Series, write_svg_and_png};
 use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -133,35 +134,18 @@ impl CostReport {
     }
 }
 
+/// Writes `rows` as `dir/name`, columns in the order the row type
+/// declares its fields.
 fn table<T: Serialize>(dir: &Path, name: &str, rows: &[T]) -> Result<(), CostError> {
-    let mut text = String::new();
-    for (i, r) in rows.iter().enumerate() {
-        let v = serde_json::to_value(r).map_err(std::io::Error::other)?;
-        let obj = v.as_object().cloned().unwrap_or_default();
-        if i == 0 {
-            text.push_str(&obj.keys().cloned().collect::<Vec<_>>().join(","));
-            text.push('\n');
-        }
-        let cells: Vec<String> = obj
-            .values()
-            // strings are quoted: point labels contain commas
-            .map(|v| {
-                v.as_str().map_or_else(
-                    || v.to_string(),
-                    |s| format!("\"{}\"", s.replace('"', "\"\"")),
-                )
-            })
-            .collect();
-        text.push_str(&cells.join(","));
-        text.push('\n');
-    }
-    std::fs::write(dir.join(name), text)?;
+    std::fs::write(dir.join(name), impact_output::to_csv(rows)?)?;
     Ok(())
 }
 
-/// Writes the report into `dir`: `cost.json`, CSV tables, figures, `index.html`.
-pub fn write_report(dir: &Path, r: &CostReport) -> Result<(), CostError> {
-    std::fs::create_dir_all(dir)?;
+/// Writes the report as `target`: `cost.json`, CSV tables, figures,
+/// `index.html`, staged beside it and renamed into place once complete.
+pub fn write_report(target: &Path, r: &CostReport) -> Result<(), CostError> {
+    let staged = ReportDir::create(target)?;
+    let dir = staged.path();
     std::fs::write(
         dir.join("cost.json"),
         serde_json::to_string_pretty(r).map_err(std::io::Error::other)?,
@@ -403,6 +387,7 @@ pub fn write_report(dir: &Path, r: &CostReport) -> Result<(), CostError> {
             ],
         ),
     )?;
+    staged.commit()?;
     Ok(())
 }
 
@@ -418,10 +403,7 @@ fn page(r: &CostReport, figures: &[&str]) -> String {
     );
     let _ = write!(
         s,
-        r#"<!DOCTYPE html>
-<html xmlns="http://www.w3.org/1999/xhtml" lang="en"><head><meta charset="utf-8"/><title>What accuracy costs: {p}</title>
-<style>body {{ font-family: DejaVu Sans, Arial, sans-serif; margin: 2em; max-width: 1300px; }} table {{ border-collapse: collapse; }} td, th {{ border: 1px solid #bbb; padding: 2px 8px; text-align: right; }} th {{ background: #eee; }} .figs svg {{ max-width: 620px; height: auto; }}</style></head><body>
-<h1>What accuracy costs in time: {p}</h1>
+        r#"<h1>What accuracy costs in time: {p}</h1>
 <p><b>Headline.</b> To reach |de| &lt; {t:e}, the chain needs {reached}: {cs:.3} s per impact; the exact engine takes {es:.2e} s (e = {e:.12}). Ratio: {ratio:.3e}.</p>
 <p>Chain time grows as N^{te:.2} and its work (mass-steps) as N^{we:.2}: N masses for a run N steps long.</p>
 <div class="figs">
@@ -494,6 +476,12 @@ fn page(r: &CostReport, figures: &[&str]) -> String {
         }
         s.push_str("</table>\n");
     }
-    s.push_str("</body></html>\n");
-    s
+    impact_output::page(
+        &Head {
+            title: &format!("What accuracy costs: {}", r.point),
+            style: Stylesheet::shared().rule(".figs svg", "max-width: 620px; height: auto;"),
+            layout: Layout::Dense,
+        },
+        &s,
+    )
 }

@@ -1,7 +1,7 @@
 //! A self-contained page: the diagram with tooltips, and the event table.
 
 use crate::figure::{Diagram, DiagramOptions, Picture};
-use impact_plot::escape;
+use impact_output::{FONT, Head, Layout, Stylesheet, escape};
 use impact_wave::Direction;
 use std::fmt::Write as _;
 
@@ -19,18 +19,12 @@ pub fn page(d: &Diagram, options: &DiagramOptions) -> String {
     let mut h = String::new();
     let _ = write!(
         h,
-        r#"<!DOCTYPE html>
-<html xmlns="http://www.w3.org/1999/xhtml" lang="en">
-<head><meta charset="utf-8"/><title>{}</title>
-<style>body {{ font-family: DejaVu Sans, Arial, sans-serif; margin: 1.5em; }} table {{ border-collapse: collapse; }} td, th {{ border: 1px solid #bbb; padding: 2px 6px; text-align: right; }} th {{ background: #eee; }} td.l {{ text-align: left; }} line.front:hover {{ stroke: #e08214; stroke-width: 2.5; stroke-opacity: 1; }}</style>
-</head><body>
-<h1>{}</h1>
+        r#"<h1>{}</h1>
 <p>Point at a front or an event for its amplitude and ancestry. e = {:.9}, t_c = {:.6}, N_b = {} ({} separations).</p>
 {svg}
 <h2>Events</h2>
 <table><tr><th>time</th><th>place</th><th class="l">kind</th><th>strain jump</th><th class="l">front</th><th class="l">parents</th></tr>
 "#,
-        escape(&d.title),
         escape(&d.title),
         d.outcome.restitution,
         d.outcome.contact_time,
@@ -97,6 +91,22 @@ pub fn page(d: &Diagram, options: &DiagramOptions) -> String {
     if total > MAX_ROWS {
         let _ = writeln!(h, "<p>{} more events not listed.</p>", total - MAX_ROWS);
     }
-    h.push_str("</body></html>\n");
-    h
+    impact_output::page(
+        &Head {
+            title: &d.title,
+            style: Stylesheet::shared()
+                .rule("body", &format!("{FONT} margin: 1.5em;"))
+                .rule(
+                    "td, th",
+                    "border: 1px solid #bbb; padding: 2px 6px; text-align: right;",
+                )
+                .rule("td.l", "text-align: left;")
+                .rule(
+                    "line.front:hover",
+                    "stroke: #e08214; stroke-width: 2.5; stroke-opacity: 1;",
+                ),
+            layout: Layout::Compact,
+        },
+        &h,
+    )
 }

@@ -60,30 +60,16 @@ pub fn figure(dir: &std::path::Path, stem: &str, svg: &str) -> Result<String, cr
     Ok(stem.to_string())
 }
 
-/// Writes `stem.csv` (a header and rows of numbers) into `dir`.
+/// Writes `stem.csv` into `dir`: the comma-separated column names of
+/// `header`, then rows of numbers (empty cells where not finite).
 pub fn csv(
     dir: &std::path::Path,
     stem: &str,
     header: &str,
     rows: &[Vec<f64>],
 ) -> Result<String, crate::PaperError> {
-    let mut text = String::with_capacity(rows.len() * 40);
-    text.push_str(header);
-    text.push('\n');
-    for r in rows {
-        let cells: Vec<String> = r
-            .iter()
-            .map(|v| {
-                if v.is_finite() {
-                    v.to_string()
-                } else {
-                    String::new()
-                }
-            })
-            .collect();
-        text.push_str(&cells.join(","));
-        text.push('\n');
-    }
+    let columns: Vec<&str> = header.split(',').collect();
+    let text = impact_output::numbers_csv(&columns, rows)?;
     let name = format!("{stem}.csv");
     std::fs::write(dir.join(&name), text)?;
     Ok(name)

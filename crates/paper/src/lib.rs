@@ -20,6 +20,7 @@ mod visco;
 pub use claim::{Claim, Item, Verdict};
 pub use settings::Settings;
 
+use impact_output::ReportDir;
 use std::path::Path;
 use thiserror::Error;
 
@@ -47,13 +48,17 @@ pub enum PaperError {
 /// One figure group: writes its files into the directory, returns its item.
 type Step = fn(&Path, &Settings) -> Result<Item, PaperError>;
 
-/// Every item, in the paper's order. `progress` is told which figure starts.
+/// Every item, in the paper's order, written as the directory `target`
+/// (staged beside it and renamed into place once complete: a failed run
+/// leaves the previous reproduction, or nothing). `progress` is told which
+/// figure starts.
 pub fn reproduce(
-    dir: &Path,
+    target: &Path,
     settings: &Settings,
     progress: &dyn Fn(&str),
 ) -> Result<Vec<Item>, PaperError> {
-    std::fs::create_dir_all(dir)?;
+    let staged = ReportDir::create(target)?;
+    let dir = staged.path();
     let steps: [(&str, Step); 9] = [
         ("Fig. 2: homogeneous viscoelastic rod", fig2::run),
         ("Fig. 3: space-time diagrams", fig3::run),
@@ -71,5 +76,6 @@ pub fn reproduce(
         items.push(step(dir, settings)?);
     }
     std::fs::write(dir.join("index.html"), page::page(dir, settings, &items))?;
+    staged.commit()?;
     Ok(items)
 }

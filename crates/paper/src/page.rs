@@ -2,7 +2,7 @@
 
 use crate::claim::{Item, Verdict};
 use crate::settings::Settings;
-use impact_plot::escape;
+use impact_output::{FONT, Head, Layout, Stylesheet, escape};
 use std::fmt::Write as _;
 
 /// Index page: the summary of every claim, then each item with its figures
@@ -19,12 +19,7 @@ pub fn page(dir: &std::path::Path, settings: &Settings, items: &[Item]) -> Strin
         .count();
     let _ = write!(
         h,
-        r#"<!DOCTYPE html>
-<html xmlns="http://www.w3.org/1999/xhtml" lang="en">
-<head><meta charset="utf-8"/><title>Impact of composite soft-rigid elastic projectiles: reproduction ({label})</title>
-<style>body {{ font-family: DejaVu Sans, Arial, sans-serif; margin: 2em; max-width: 1400px; color: #222; }} table {{ border-collapse: collapse; margin: 0.8em 0; }} td, th {{ border: 1px solid #bbb; padding: 3px 8px; text-align: left; vertical-align: top; }} th {{ background: #eee; }} .agrees {{ background: #e5f5e0; }} .disagrees {{ background: #fde0dd; }} .figs svg {{ max-width: 560px; height: auto; margin: 0 1em 1em 0; }} .mode {{ background: #fff3cd; padding: 0.5em; }}</style>
-</head><body>
-<h1>Impact of composite soft-rigid elastic projectiles: the paper, reproduced</h1>
+        r#"<h1>Impact of composite soft-rigid elastic projectiles: the paper, reproduced</h1>
 <p class="mode">Resolution: <b>{label}</b>{quick}. Chain sizes: Fig. 2 N = {n2}, Figs. 8-10 N = {nv}; maps on the paper's grid (step {step}).</p>
 <p>{agree} of {total} statements of the paper agree with our numbers; the verdicts below are computed from the numbers, and every disagreement says which side the evidence supports.</p>
 <h2>Summary</h2>
@@ -100,6 +95,31 @@ pub fn page(dir: &std::path::Path, settings: &Settings, items: &[Item]) -> Strin
             .collect();
         let _ = writeln!(h, "<p>Files: {}</p>", escape(&files.join(", ")));
     }
-    h.push_str("</body></html>\n");
-    h
+    impact_output::page(
+        &Head {
+            title: &format!(
+                "Impact of composite soft-rigid elastic projectiles: reproduction ({})",
+                settings.label
+            ),
+            style: Stylesheet::shared()
+                .rule(
+                    "body",
+                    &format!("{FONT} margin: 2em; max-width: 1400px; color: #222;"),
+                )
+                .extend("table", "margin: 0.8em 0;")
+                .rule(
+                    "td, th",
+                    "border: 1px solid #bbb; padding: 3px 8px; text-align: left; vertical-align: top;",
+                )
+                .rule(".agrees", "background: #e5f5e0;")
+                .rule(".disagrees", "background: #fde0dd;")
+                .rule(
+                    ".figs svg",
+                    "max-width: 560px; height: auto; margin: 0 1em 1em 0;",
+                )
+                .rule(".mode", "background: #fff3cd; padding: 0.5em;"),
+            layout: Layout::Compact,
+        },
+        &h,
+    )
 }

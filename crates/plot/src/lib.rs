@@ -17,9 +17,11 @@ pub use axis::{Axis, Scale};
 pub use colour::{Colour, Colourmap};
 pub use contour::contour;
 pub use heatmap::{Category, Heatmap};
+/// The one text escape (`impact-output`), for figure code that writes markup.
+pub use impact_output::escape;
 pub use lines::{LinePlot, Marker, Series};
 pub use raster::{PlotError, embedded_image, png, raster_png};
-pub use svg::{Anchor, Svg, escape};
+pub use svg::{Anchor, Svg};
 
 /// Writes `stem.svg` and `stem.png` for an SVG document.
 pub fn write_svg_and_png(stem: &std::path::Path, svg: &str) -> Result<(), PlotError> {

@@ -3,7 +3,7 @@
 //! scripts, styles or images fetched from anywhere.
 
 use crate::compare::{ComparePoint, Summary};
-use impact_plot::escape;
+use impact_output::{Head, Layout, Stylesheet, escape};
 use std::fmt::Write as _;
 
 fn f(v: Option<f64>, digits: usize) -> String {
@@ -20,23 +20,7 @@ pub fn page(
     let mut h = String::new();
     let _ = write!(
         h,
-        r#"<!DOCTYPE html>
-<html xmlns="http://www.w3.org/1999/xhtml" lang="en">
-<head>
-<meta charset="utf-8"/>
-<title>impact compare: exact engine vs chain</title>
-<style>
-body {{ font-family: DejaVu Sans, Arial, sans-serif; margin: 2em; max-width: 1300px; color: #222; }}
-table {{ border-collapse: collapse; margin: 1em 0; }}
-td, th {{ border: 1px solid #bbb; padding: 3px 8px; text-align: right; }}
-th {{ background: #eee; }}
-td.l {{ text-align: left; }}
-.figs svg {{ max-width: 640px; height: auto; margin-right: 1em; }}
-code {{ background: #f4f4f4; padding: 0 3px; }}
-</style>
-</head>
-<body>
-<h1>Exact engine vs discrete chain</h1>
+        r#"<h1>Exact engine vs discrete chain</h1>
 <p>Each point of the <code>(x, alpha)</code> grid was run with the exact front-tracing engine and with the chain; differences are chain minus exact, at the largest chain size.</p>
 <h2>Summary</h2>
 <table>
@@ -94,8 +78,27 @@ code {{ background: #f4f4f4; padding: 0 3px; }}
     let settings = serde_json::to_string_pretty(settings).unwrap_or_default();
     let _ = write!(
         h,
-        "</table>\n<h2>Settings</h2>\n<pre>{}</pre>\n<p>Every point is in <code>report.json</code> and <code>points.csv</code> beside this page.</p>\n</body>\n</html>\n",
+        "</table>\n<h2>Settings</h2>\n<pre>{}</pre>\n<p>Every point is in <code>report.json</code> and <code>points.csv</code> beside this page.</p>\n",
         escape(&settings)
     );
-    h
+    impact_output::page(
+        &Head {
+            title: "impact compare: exact engine vs chain",
+            style: Stylesheet::shared()
+                .extend("body", "color: #222;")
+                .extend("table", "margin: 1em 0;")
+                .rule(
+                    "td, th",
+                    "border: 1px solid #bbb; padding: 3px 8px; text-align: right;",
+                )
+                .rule("td.l", "text-align: left;")
+                .rule(
+                    ".figs svg",
+                    "max-width: 640px; height: auto; margin-right: 1em;",
+                )
+                .rule("code", "background: #f4f4f4; padding: 0 3px;"),
+            layout: Layout::Spread,
+        },
+        &h,
+    )
 }

@@ -2,9 +2,9 @@
 //! and a self-contained `index.html`.
 
 use crate::compare::{ComparePoint, Summary, Verdict, summarize};
+use impact_output::{Plain, ReportDir};
 use impact_plot::{Category, Colour, Colourmap, Heatmap, PlotError, write_svg_and_png};
 use serde::Serialize;
-use std::fmt::Write as _;
 use std::path::Path;
 
 /// The grid the points were computed on (points in order: `alpha` outer,
@@ -23,43 +23,59 @@ struct ReportJson<'a> {
     points: &'a [ComparePoint],
 }
 
-fn cell<T: ToString>(v: Option<T>) -> String {
-    v.map_or_else(String::new, |v| v.to_string())
+/// One line of `points.csv`: a point at the finest chain size. Empty cells
+/// where an engine failed or a quantity does not exist.
+#[derive(Serialize)]
+struct PointLine<'a> {
+    x: Plain<f64>,
+    alpha: Plain<f64>,
+    e_exact: Option<Plain<f64>>,
+    e_chain: Option<Plain<f64>>,
+    de: Option<Plain<f64>>,
+    e_extrapolated: Option<Plain<f64>>,
+    observed_order: Option<Plain<f64>>,
+    reduced_tc_exact: Option<Plain<f64>>,
+    reduced_tc_chain: Option<Plain<f64>>,
+    n1_exact: Option<Plain<f64>>,
+    n1_chain: Option<Plain<f64>>,
+    bounces_exact: Option<u32>,
+    bounces_chain: Option<u32>,
+    separations_exact: Option<u32>,
+    separations_chain: Option<u32>,
+    boundary_distance: Option<Plain<f64>>,
+    verdict: &'a str,
+    error: Option<&'a str>,
+}
+
+impl<'a> PointLine<'a> {
+    fn new(p: &'a ComparePoint) -> Self {
+        let (ex, ch) = (p.exact.as_ref(), p.finest());
+        Self {
+            x: Plain(p.x),
+            alpha: Plain(p.alpha),
+            e_exact: ex.map(|o| Plain(o.restitution)),
+            e_chain: ch.map(|o| Plain(o.restitution)),
+            de: p.de().map(Plain),
+            e_extrapolated: p.extrapolated_restitution.map(Plain),
+            observed_order: p.observed_order.map(Plain),
+            reduced_tc_exact: ex.map(|o| Plain(o.reduced_contact_time)),
+            reduced_tc_chain: ch.map(|o| Plain(o.reduced_contact_time)),
+            n1_exact: ex.and_then(|o| o.n1).map(Plain),
+            n1_chain: ch.and_then(|o| o.n1).map(Plain),
+            bounces_exact: ex.map(|o| o.bounces),
+            bounces_chain: ch.map(|o| o.bounces),
+            separations_exact: ex.map(|o| o.separations),
+            separations_chain: ch.map(|o| o.separations),
+            boundary_distance: p.boundary_distance.map(Plain),
+            verdict: p.verdict.name(),
+            error: p.error.as_deref(),
+        }
+    }
 }
 
 /// One CSV line per point, at the finest chain size.
-pub fn points_csv(points: &[ComparePoint]) -> String {
-    let mut s = String::from(
-        "x,alpha,e_exact,e_chain,de,e_extrapolated,observed_order,reduced_tc_exact,reduced_tc_chain,n1_exact,n1_chain,bounces_exact,bounces_chain,separations_exact,separations_chain,boundary_distance,verdict,error\n",
-    );
-    for p in points {
-        let (ex, ch) = (p.exact.as_ref(), p.finest());
-        let _ = writeln!(
-            s,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
-            p.x,
-            p.alpha,
-            cell(ex.map(|o| o.restitution)),
-            cell(ch.map(|o| o.restitution)),
-            cell(p.de()),
-            cell(p.extrapolated_restitution),
-            cell(p.observed_order),
-            cell(ex.map(|o| o.reduced_contact_time)),
-            cell(ch.map(|o| o.reduced_contact_time)),
-            cell(ex.and_then(|o| o.n1)),
-            cell(ch.and_then(|o| o.n1)),
-            cell(ex.map(|o| o.bounces)),
-            cell(ch.map(|o| o.bounces)),
-            cell(ex.map(|o| o.separations)),
-            cell(ch.map(|o| o.separations)),
-            cell(p.boundary_distance),
-            p.verdict.name(),
-            p.error
-                .as_ref()
-                .map_or_else(String::new, |e| format!("\"{}\"", e.replace('"', "\"\""))),
-        );
-    }
-    s
+pub fn points_csv(points: &[ComparePoint]) -> std::io::Result<String> {
+    impact_output::to_csv(points.iter().map(PointLine::new))
 }
 
 /// Heatmap of the signed `e` difference at the finest size.
@@ -128,14 +144,18 @@ pub fn bounces_heatmap(grid: &ReportGrid, points: &[ComparePoint], n: usize) -> 
     }
 }
 
-/// Writes the whole report into `dir` (created if needed).
+/// Writes the whole report as `target`: staged beside it and renamed into
+/// place once complete, so a failed run leaves the previous report (or
+/// nothing). Files of `target` the report does not write, such as the
+/// run's journal, are kept.
 pub fn write_report(
-    dir: &Path,
+    target: &Path,
     settings: &serde_json::Value,
     grid: &ReportGrid,
     points: &[ComparePoint],
 ) -> Result<Summary, PlotError> {
-    std::fs::create_dir_all(dir)?;
+    let staged = ReportDir::create(target)?;
+    let dir = staged.path();
     let summary = summarize(points);
     let json = serde_json::to_string_pretty(&ReportJson {
         settings,
@@ -145,7 +165,7 @@ pub fn write_report(
     })
     .map_err(std::io::Error::other)?;
     std::fs::write(dir.join("report.json"), json)?;
-    std::fs::write(dir.join("points.csv"), points_csv(points))?;
+    std::fs::write(dir.join("points.csv"), points_csv(points)?)?;
     let n = points
         .iter()
         .find_map(|p| p.sizes.last().copied())
@@ -158,6 +178,7 @@ pub fn write_report(
         dir.join("index.html"),
         crate::html::page(settings, &summary, points, &[&de, &nb]),
     )?;
+    staged.commit()?;
     Ok(summary)
 }
 

@@ -2,6 +2,7 @@
 
 use impact_chain::{ChainConfig, ChainError};
 use impact_model::{Bilayer, Outcome, Scene, SceneError, SettingError, Timed, WallContact};
+use impact_output::Plain;
 use impact_rigid::{RigidConfig, RigidError};
 use impact_wave::{WaveConfig, WaveError};
 use serde::{Deserialize, Serialize};
@@ -186,59 +187,63 @@ impl Row {
         }
         row
     }
+}
 
-    /// CSV header matching [`Row::csv`].
-    pub fn csv_header(timing: bool) -> String {
-        let mut h = String::from(
-            "x,alpha,engine,wall_contact,restitution,restitution_from_velocity,contact_time,reduced_contact_time,n1,bounces,separations,end_time,stop_reason,events,steps,dropped_fronts,merged_fronts,error_bound",
-        );
-        if timing {
-            h.push_str(",elapsed_seconds");
-        }
-        h.push_str(",error");
-        h
-    }
+/// A [`Row`] as a CSV line: the same columns in the same order, numbers as
+/// `Display` writes them (the shortest text that reads back to the same
+/// number, so the text is deterministic), `elapsed_seconds` only in timed
+/// sweeps, absent values as empty cells. The JSON lines are the `Row`
+/// itself.
+#[derive(Serialize)]
+struct CsvRow<'a> {
+    x: Plain<f64>,
+    alpha: Plain<f64>,
+    engine: &'a str,
+    wall_contact: &'a str,
+    restitution: Option<Plain<f64>>,
+    restitution_from_velocity: Option<Plain<f64>>,
+    contact_time: Option<Plain<f64>>,
+    reduced_contact_time: Option<Plain<f64>>,
+    n1: Option<Plain<f64>>,
+    bounces: Option<u32>,
+    separations: Option<u32>,
+    end_time: Option<Plain<f64>>,
+    stop_reason: Option<&'a str>,
+    events: Option<u64>,
+    steps: Option<u64>,
+    dropped_fronts: Option<u64>,
+    merged_fronts: Option<u64>,
+    error_bound: Option<Plain<f64>>,
+    /// Absent from untimed sweeps; in timed ones, empty for a failed row.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    elapsed_seconds: Option<Option<Plain<f64>>>,
+    error: Option<&'a str>,
+}
 
-    /// One CSV line; absent values are empty cells. Floats use Rust's
-    /// shortest round-trip form, so the text is deterministic.
-    pub fn csv(&self, timing: bool) -> String {
-        fn cell<T: ToString>(v: &Option<T>) -> String {
-            v.as_ref().map_or_else(String::new, T::to_string)
+impl<'a> CsvRow<'a> {
+    fn new(r: &'a Row, timing: bool) -> Self {
+        Self {
+            x: Plain(r.x),
+            alpha: Plain(r.alpha),
+            engine: &r.engine,
+            wall_contact: &r.wall_contact,
+            restitution: r.restitution.map(Plain),
+            restitution_from_velocity: r.restitution_from_velocity.map(Plain),
+            contact_time: r.contact_time.map(Plain),
+            reduced_contact_time: r.reduced_contact_time.map(Plain),
+            n1: r.n1.map(Plain),
+            bounces: r.bounces,
+            separations: r.separations,
+            end_time: r.end_time.map(Plain),
+            stop_reason: r.stop_reason.as_deref(),
+            events: r.events,
+            steps: r.steps,
+            dropped_fronts: r.dropped_fronts,
+            merged_fronts: r.merged_fronts,
+            error_bound: r.error_bound.map(Plain),
+            elapsed_seconds: timing.then(|| r.elapsed_seconds.map(Plain)),
+            error: r.error.as_deref(),
         }
-        let mut cells = vec![
-            self.x.to_string(),
-            self.alpha.to_string(),
-            self.engine.to_string(),
-            self.wall_contact.clone(),
-            cell(&self.restitution),
-            cell(&self.restitution_from_velocity),
-            cell(&self.contact_time),
-            cell(&self.reduced_contact_time),
-            cell(&self.n1),
-            cell(&self.bounces),
-            cell(&self.separations),
-            cell(&self.end_time),
-            cell(&self.stop_reason),
-            cell(&self.events),
-            cell(&self.steps),
-            cell(&self.dropped_fronts),
-            cell(&self.merged_fronts),
-            cell(&self.error_bound),
-        ];
-        if timing {
-            // failed rows have no time: an empty cell keeps the columns aligned
-            cells.push(
-                self.elapsed_seconds
-                    .map_or_else(String::new, |t| t.to_string()),
-            );
-        }
-        // errors are free text: quote them
-        cells.push(
-            self.error
-                .as_ref()
-                .map_or_else(String::new, |e| format!("\"{}\"", e.replace('"', "\"\""))),
-        );
-        cells.join(",")
     }
 }
 
@@ -267,10 +272,7 @@ impl RowFormat {
     ) -> std::io::Result<()> {
         match self {
             RowFormat::Csv => {
-                writeln!(out, "{}", Row::csv_header(timing))?;
-                for r in rows {
-                    writeln!(out, "{}", r.csv(timing))?;
-                }
+                impact_output::write_csv(out, rows.iter().map(|r| CsvRow::new(r, timing)))?
             }
             RowFormat::JsonLines => {
                 for r in rows {
@@ -353,10 +355,18 @@ mod tests {
             }),
             true,
         );
-        assert_eq!(
-            row.csv(true).split(',').count(),
-            Row::csv_header(true).split(',').count()
-        );
+        // the header line and each row's line, as a CSV file writes them
+        let csv = |row: &Row, timing: bool| -> (String, String) {
+            let mut out = Vec::new();
+            RowFormat::Csv
+                .write(std::slice::from_ref(row), timing, &mut out)
+                .unwrap();
+            let text = String::from_utf8(out).unwrap();
+            let (header, line) = text.trim_end_matches('\n').split_once('\n').unwrap();
+            (header.to_string(), line.to_string())
+        };
+        let (header, line) = csv(&row, true);
+        assert_eq!(line.split(',').count(), header.split(',').count());
         // regression: a failed row had one cell fewer than the header
         let lost = Row::new(
             Bilayer {
@@ -368,10 +378,8 @@ mod tests {
             Err(RunError::Wave(WaveError::TimeLimit { time: 1.0 })),
             true,
         );
-        assert_eq!(
-            lost.csv(true).split(',').count(),
-            Row::csv_header(true).split(',').count()
-        );
+        let (header, line) = csv(&lost, true);
+        assert_eq!(line.split(',').count(), header.split(',').count());
         let failed = Row::new(
             Bilayer {
                 x: 0.4,
@@ -382,6 +390,10 @@ mod tests {
             Err(RunError::Scene(SceneError::Json("a, \"b\"".into()))),
             false,
         );
-        assert!(failed.csv(false).ends_with("\"scene JSON: a, \"\"b\"\"\""));
+        assert!(
+            csv(&failed, false)
+                .1
+                .ends_with("\"scene JSON: a, \"\"b\"\"\"")
+        );
     }
 }
