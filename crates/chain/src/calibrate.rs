@@ -50,11 +50,12 @@ pub fn calibration_point(
 ) -> Result<CalibrationPoint, ChainError> {
     let coarse = homogeneous_restitution(t, n, law)?;
     let fine = homogeneous_restitution(t, 2 * n, law)?;
-    let correction = fine - coarse;
+    // first order in N, sizes in ratio 2: the step adds `fine - coarse`
+    let restitution = impact_model::numerics::richardson_step(coarse, fine, 2.0, 1.0);
     Ok(CalibrationPoint {
         tau_c_over_l: t,
-        restitution: fine + correction,
-        correction,
+        restitution,
+        correction: fine - coarse,
     })
 }
 

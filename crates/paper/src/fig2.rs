@@ -4,8 +4,9 @@
 //! `t_c` against `tau c / L`.
 
 use crate::PaperError;
-use crate::claim::{Claim, Item, csv, figure, power_fit};
+use crate::claim::{Claim, Item, csv, figure};
 use impact_chain::{ChainConfig, ChainEngine, ChainRecord};
+use impact_model::numerics::power_fit;
 use impact_model::{Layer, Scene, WallContact};
 use impact_plot::{Axis, Colour, LinePlot, Series};
 use rayon::prelude::*;
@@ -100,13 +101,14 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
         .filter(|r| r.tau <= 0.05)
         .map(|r| (r.tau, 1.0 - r.e))
         .collect();
-    let (p, prefactor) = power_fit(&small);
+    let fit = power_fit(&small);
+    let (p, prefactor) = (fit.exponent, fit.prefactor());
     let unload: Vec<(f64, f64)> = runs
         .iter()
         .filter(|r| r.tau <= 0.05)
         .map(|r| (r.tau, r.unloading))
         .collect();
-    let (q, _) = power_fit(&unload);
+    let q = power_fit(&unload).exponent;
     let at = |runs: &[Run], tau: f64| {
         runs.iter()
             .find(|r| (r.tau - tau).abs() < 1e-9)

@@ -4,6 +4,7 @@
 use crate::claim::{Claim, Item, csv, figure};
 use crate::{PaperError, Settings};
 use impact_chain::{ChainConfig, simulate};
+use impact_model::numerics::{lagrange_weights, spearman};
 use impact_model::{Bilayer, Outcome, Rod, WallContact, calibration};
 use impact_plot::{Axis, Colour, LinePlot, Series};
 use impact_study::{LimitSettings, chain_limit};
@@ -106,7 +107,10 @@ fn end_value(e1: f64, e2: f64) -> Result<End, PaperError> {
             .ok_or_else(|| PaperError::Engine("the chain ladder gave no extrapolation".into()))?;
         Ok((x.value, x.error))
     };
-    let ((near, near_error), (far, far_error)) = (limit(END_X)?, limit(2.0 * END_X)?);
+    let distances = [END_X, 2.0 * END_X];
+    let runs = [limit(distances[0])?, limit(distances[1])?];
+    // linear in the distance to the end, evaluated at 0: weights 2 and -1
+    let weights = lagrange_weights(&distances, 0.0);
     let model_limit = if at_bottom {
         e1
     } else {
@@ -118,8 +122,11 @@ fn end_value(e1: f64, e2: f64) -> Result<End, PaperError> {
         at_bottom,
         model_limit,
         expected: if at_bottom { e1 } else { e2 },
-        value: 2.0 * near - far,
-        error: 2.0 * near_error + far_error,
+        value: weights.iter().zip(&runs).fold(0.0, |v, (w, r)| v + w * r.0),
+        error: weights
+            .iter()
+            .zip(&runs)
+            .fold(0.0, |e, (w, r)| e + w.abs() * r.1),
     })
 }
 
@@ -417,35 +424,13 @@ pub fn run_10(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
     ];
     // staircase: N_b rises with x overall (rank correlation), single-step dips
     // are chain noise
-    // Spearman ranks: tied values share their average rank
-    let ranks = |v: Vec<f64>| {
-        let mut idx: Vec<usize> = (0..v.len()).collect();
-        idx.sort_by(|&a, &b| v[a].total_cmp(&v[b]));
-        let mut r = vec![0.0; v.len()];
-        let mut start = 0;
-        while start < idx.len() {
-            let mut end = start + 1;
-            while end < idx.len() && v[idx[end]] == v[idx[start]] {
-                end += 1;
-            }
-            let mean = 0.5 * (start + end - 1) as f64;
-            for &i in &idx[start..end] {
-                r[i] = mean;
-            }
-            start = end;
-        }
-        r
-    };
-    let (rx, rb) = (
-        ranks(curve.iter().map(|c| c.0).collect()),
-        ranks(curve.iter().map(|c| f64::from(c.1.bounces)).collect()),
+    let rho = spearman(
+        &curve.iter().map(|c| c.0).collect::<Vec<_>>(),
+        &curve
+            .iter()
+            .map(|c| f64::from(c.1.bounces))
+            .collect::<Vec<_>>(),
     );
-    let n = rx.len() as f64;
-    let (mx, mb) = (rx.iter().sum::<f64>() / n, rb.iter().sum::<f64>() / n);
-    let cov: f64 = rx.iter().zip(&rb).map(|(a, b)| (a - mx) * (b - mb)).sum();
-    let rho = cov
-        / (rx.iter().map(|a| (a - mx).powi(2)).sum::<f64>().sqrt()
-            * rb.iter().map(|b| (b - mb).powi(2)).sum::<f64>().sqrt());
     let dips = curve
         .windows(2)
         .filter(|w| w[1].1.bounces < w[0].1.bounces)

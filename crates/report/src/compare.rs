@@ -294,7 +294,7 @@ fn extrapolate(sizes: &[usize], chain: &[Outcome], observed: Option<f64>) -> Opt
             sizes[k - 1] as f64,
         ];
         if d1 > 0.0 && d2 > 0.0 {
-            impact_model::richardson::self_consistent_order(n, d1 / d2)
+            impact_model::numerics::self_consistent_order(n, d1 / d2)
         } else {
             observed?
         }
@@ -302,7 +302,12 @@ fn extrapolate(sizes: &[usize], chain: &[Outcome], observed: Option<f64>) -> Opt
         observed?
     };
     let p = p.clamp(0.25, 4.0);
-    Some(e[k - 1] + (e[k - 1] - e[k - 2]) / (r.powf(p) - 1.0))
+    Some(impact_model::numerics::richardson_step(
+        e[k - 2],
+        e[k - 1],
+        r,
+        p,
+    ))
 }
 
 fn classify(p: &ComparePoint, s: &CompareSettings) -> Verdict {
@@ -430,7 +435,7 @@ mod tests {
         let sizes = [250.0, 1000.0, 2000.0];
         let e = |n: f64| 1.0 - 0.5 / n;
         let q = (e(sizes[1]) - e(sizes[0])).abs() / (e(sizes[2]) - e(sizes[1])).abs();
-        assert!((impact_model::richardson::self_consistent_order(sizes, q) - 1.0).abs() < 1e-9);
+        assert!((impact_model::numerics::self_consistent_order(sizes, q) - 1.0).abs() < 1e-9);
     }
 
     #[test]
