@@ -3,7 +3,7 @@
 use crate::CostError;
 use crate::chain::{ChainCost, ChainKind, ChainStudy, Headline};
 use crate::exact::ExactCost;
-use crate::growth::Growth;
+use crate::growth::{Growth, GrowthSweep};
 use impact_model::numerics::{pareto_front, power_fit};
 use impact_plot::{Axis, Colour, LinePlot, Marker, Scale, Series, escape, write_svg_and_png};
 use serde::Serialize;
@@ -329,8 +329,10 @@ pub fn write_report(dir: &Path, r: &CostReport) -> Result<(), CostError> {
         ],
     };
     write_svg_and_png(&dir.join("chain-growth"), &growth.to_svg())?;
-    let along_x: Vec<&Growth> = r.growth.iter().filter(|g| g.sweep == "x").collect();
-    let along_a: Vec<&Growth> = r.growth.iter().filter(|g| g.sweep == "alpha").collect();
+    let along = |sweep: GrowthSweep| -> Vec<&Growth> {
+        r.growth.iter().filter(|g| g.sweep == sweep).collect()
+    };
+    let (along_x, along_a) = (along(GrowthSweep::X), along(GrowthSweep::Alpha));
     let exact_growth = LinePlot {
         title: "Exact engine: events vs t2/t1".into(),
         x: Axis::fit(

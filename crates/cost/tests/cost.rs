@@ -123,7 +123,11 @@ fn the_cost_study_runs_and_its_errors_fall_as_settings_tighten() {
     assert!(h.ratio > 1.0);
 
     // growth: events grow with t2/t1 along alpha = 0.005
-    let g: Vec<_> = r.growth.iter().filter(|g| g.sweep == "x").collect();
+    let g: Vec<_> = r
+        .growth
+        .iter()
+        .filter(|g| g.sweep == impact_cost::GrowthSweep::X)
+        .collect();
     assert!(g.last().unwrap().events > 10 * g.first().unwrap().events);
 
     let dir = std::env::temp_dir().join(format!("impact-cost-{}", std::process::id()));

@@ -2,7 +2,7 @@
 //! central point x = alpha = 0.3, and the paper's N = 10^4 judged by it.
 
 use crate::claim::{Claim, Item};
-use crate::{PaperError, Settings};
+use crate::{PaperError, Resolution, Settings};
 use impact_cost::{ChainKind, ChainStudy, CostSettings, cost_study, write_report};
 use impact_model::Bilayer;
 use impact_model::numerics::power_fit;
@@ -13,7 +13,7 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
         .scene()
         .validate()
         .map_err(|e| PaperError::Engine(e.to_string()))?;
-    let settings = if s.label == "full" {
+    let settings = if s.resolution == Resolution::Full {
         CostSettings::standard()
     } else {
         CostSettings::tiny()

@@ -18,7 +18,7 @@ mod settings;
 mod visco;
 
 pub use claim::{Claim, Item, Verdict};
-pub use settings::Settings;
+pub use settings::{Resolution, Settings};
 
 use std::path::Path;
 use thiserror::Error;
