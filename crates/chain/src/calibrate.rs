@@ -2,7 +2,7 @@
 //! of a homogeneous Kelvin-Voigt rod as a function of `tau c / L` alone.
 
 use crate::{ChainConfig, ChainError, simulate};
-use impact_model::{Layer, Scene, WallContact};
+use impact_model::{Layer, Rod, Scene, WallContact};
 
 /// How the tables in `data/calibration/kelvin-voigt-<law>.csv` are made: each entry
 /// is the chain at `n` and `2n` masses, Richardson-extrapolated assuming the
@@ -16,12 +16,13 @@ pub struct CalibrationPoint {
     pub correction: f64,
 }
 
-/// Restitution of a homogeneous rod (`L = c = 1`) with `tau c / L = t`
-/// under the wall contact law `law`.
-pub fn homogeneous_restitution(t: f64, masses: usize, law: WallContact) -> Result<f64, ChainError> {
+/// The homogeneous Kelvin-Voigt rod (`L = c = v_b = 1`) with
+/// `tau c / L = t` under the wall contact law `law`: the rod the table
+/// (and the paper's Fig. 2) is about.
+pub fn homogeneous_rod(t: f64, law: WallContact) -> Result<Rod, ChainError> {
     let mut layer = Layer::elastic(1.0, 1.0, 1.0);
     layer.relaxation_time = Some(t);
-    let rod = Scene {
+    Scene {
         impact_speed: 1.0,
         layers: vec![layer],
         wall_contact: Some(law),
@@ -31,7 +32,13 @@ pub fn homogeneous_restitution(t: f64, masses: usize, law: WallContact) -> Resul
         field: "tau_c_over_l",
         allowed: "a finite number >= 0",
         value: t,
-    })?;
+    })
+}
+
+/// Restitution of a homogeneous rod (`L = c = 1`) with `tau c / L = t`
+/// under the wall contact law `law`.
+pub fn homogeneous_restitution(t: f64, masses: usize, law: WallContact) -> Result<f64, ChainError> {
+    let rod = homogeneous_rod(t, law)?;
     Ok(simulate(
         &rod,
         &ChainConfig {

@@ -2,7 +2,7 @@
 //! bounce sequence, and its `e(x)` against the exact engine at small `alpha`.
 
 use crate::claim::{Claim, Item, csv, figure};
-use crate::{PaperError, Settings};
+use crate::{PaperError, Settings, exact_bilayer};
 use impact_model::Bilayer;
 use impact_model::numerics::exponential_fit;
 use impact_model::rigid_bottom::{height, rigid_bottom};
@@ -43,15 +43,10 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
     let compared: Vec<(f64, f64, f64)> = xs
         .par_iter()
         .map(|&x| {
-            let rod = Bilayer {
+            let exact = exact_bilayer(Bilayer {
                 x,
                 alpha: s.appendix_alpha,
-            }
-            .scene()
-            .validate()
-            .map_err(|e| PaperError::Engine(e.to_string()))?;
-            let exact = impact_wave::simulate(&rod, &impact_wave::WaveConfig::default())
-                .map_err(|e| PaperError::Engine(e.to_string()))?;
+            })?;
             Ok((x, rigid_bottom(x).restitution, exact.restitution))
         })
         .collect::<Result<_, PaperError>>()?;

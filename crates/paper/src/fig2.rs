@@ -5,9 +5,10 @@
 
 use crate::PaperError;
 use crate::claim::{Claim, Item, csv, figure};
+use impact_chain::calibrate::homogeneous_rod;
 use impact_chain::{ChainConfig, ChainEngine, ChainRecord};
+use impact_model::WallContact;
 use impact_model::numerics::power_fit;
-use impact_model::{Layer, Scene, WallContact};
 use impact_plot::{Axis, Colour, LinePlot, Series};
 use rayon::prelude::*;
 use std::path::Path;
@@ -22,15 +23,7 @@ struct Run {
 }
 
 fn run_one(tau: f64, masses: usize, law: WallContact) -> Result<Run, PaperError> {
-    let mut layer = Layer::elastic(1.0, 1.0, 1.0);
-    layer.relaxation_time = Some(tau);
-    let rod = Scene {
-        impact_speed: 1.0,
-        layers: vec![layer],
-        wall_contact: Some(law),
-    }
-    .validate()
-    .map_err(|e| PaperError::Engine(e.to_string()))?;
+    let rod = homogeneous_rod(tau, law).map_err(|e| PaperError::Engine(e.to_string()))?;
     let config = ChainConfig {
         masses,
         record: ChainRecord {
@@ -127,14 +120,15 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
         .collect::<Vec<_>>()
         .join("; ");
     let taus: Vec<f64> = runs.iter().map(|r| r.tau).collect();
+    let tau_axis = Axis::fit(
+        taus.iter().copied(),
+        impact_plot::Scale::Log,
+        "tau c / L",
+        0.05,
+    );
     let fig_a = LinePlot {
         title: format!("Fig. 2(a): 1 - e vs tau c/L (chain, N = {})", s.fig2_masses),
-        x: Axis::fit(
-            taus.iter().copied(),
-            impact_plot::Scale::Log,
-            "tau c / L",
-            0.05,
-        ),
+        x: tau_axis.clone(),
         y: Axis::fit(
             runs.iter().chain(&unilateral).map(|r| 1.0 - r.e),
             impact_plot::Scale::Log,
@@ -182,12 +176,7 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
     };
     let fig_c = LinePlot {
         title: "Fig. 2(b, inset): unloading time and contact time".into(),
-        x: Axis::fit(
-            taus.iter().copied(),
-            impact_plot::Scale::Log,
-            "tau c / L",
-            0.05,
-        ),
+        x: tau_axis,
         y: Axis::fit(
             runs.iter().flat_map(|r| [r.unloading, r.contact_time]),
             impact_plot::Scale::Log,

@@ -34,6 +34,17 @@ pub enum PaperError {
     Engine(String),
 }
 
+/// The exact engine at its default settings on the bilayer `b`: the
+/// reference the figures set the paper's formulas and models against.
+fn exact_bilayer(b: impact_model::Bilayer) -> Result<impact_model::Outcome, PaperError> {
+    let rod = b
+        .scene()
+        .validate()
+        .map_err(|e| PaperError::Engine(e.to_string()))?;
+    impact_wave::simulate(&rod, &impact_wave::WaveConfig::default())
+        .map_err(|e| PaperError::Engine(e.to_string()))
+}
+
 /// One figure group: writes its files into the directory, returns its item.
 type Step = fn(&Path, &Settings) -> Result<Item, PaperError>;
 

@@ -428,16 +428,6 @@ pub fn summarize(points: &[ComparePoint]) -> Summary {
 mod tests {
     use super::*;
 
-    /// Regression: uneven sizes (250, 1000, 2000) were given the order
-    /// ln(d1/d2) / ln(N2/N1), which assumes even spacing.
-    #[test]
-    fn uneven_sizes_recover_the_order() {
-        let sizes = [250.0, 1000.0, 2000.0];
-        let e = |n: f64| 1.0 - 0.5 / n;
-        let q = (e(sizes[1]) - e(sizes[0])).abs() / (e(sizes[2]) - e(sizes[1])).abs();
-        assert!((impact_model::numerics::self_consistent_order(sizes, q) - 1.0).abs() < 1e-9);
-    }
-
     #[test]
     fn order_and_extrapolation_recover_a_power_law() {
         // e(N) = 1 - 0.5 N^-0.6 against exact 1

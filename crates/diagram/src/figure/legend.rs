@@ -3,6 +3,13 @@
 use super::{TOP, strain_colour};
 use impact_plot::{Anchor, Svg};
 
+/// A mark in the key: a line `(stroke, width, attributes)` or a circle
+/// `(fill, attributes)`.
+enum Mark {
+    Line(&'static str, f64, &'static str),
+    Circle(&'static str, &'static str),
+}
+
 /// The strain colour bar `±scale` and the key, at `x` right of the panels.
 pub(super) fn legend(svg: &mut Svg, x: f64, scale: f64) {
     svg.raw(r#"<g class="legend">"#);
@@ -45,33 +52,32 @@ pub(super) fn legend(svg: &mut Svg, x: f64, scale: f64) {
     );
     svg.text(x, top - 8.0, "strain ε c_i / v_b", 11.0, Anchor::Start, "");
     let y = top + h + 30.0;
-    svg.line((x, y), (x + 22.0, y), "#333", 0.8, "");
-    svg.text(x + 28.0, y + 4.0, "front", 10.0, Anchor::Start, "");
-    svg.line(
-        (x, y + 20.0),
-        (x + 22.0, y + 20.0),
-        "#1a9850",
-        2.6,
-        r#"stroke-dasharray="2 3""#,
-    );
-    svg.text(x + 28.0, y + 24.0, "takeoff wave", 10.0, Anchor::Start, "");
-    svg.circle(x + 11.0, y + 40.0, 5.0, "#777", r#"stroke="black""#);
-    svg.text(x + 28.0, y + 44.0, "separation", 10.0, Anchor::Start, "");
-    svg.circle(
-        x + 11.0,
-        y + 60.0,
-        5.0,
-        "white",
-        r##"stroke="#555" stroke-width="1.5""##,
-    );
-    svg.text(x + 28.0, y + 64.0, "reconnection", 10.0, Anchor::Start, "");
-    svg.line(
-        (x, y + 80.0),
-        (x + 22.0, y + 80.0),
-        "#444",
-        1.0,
-        r#"stroke-dasharray="5 3""#,
-    );
-    svg.text(x + 28.0, y + 84.0, "interface", 10.0, Anchor::Start, "");
+    // the key: each mark as the panels draw it, 20 pixels apart
+    let marks = [
+        (Mark::Line("#333", 0.8, ""), "front"),
+        (
+            Mark::Line("#1a9850", 2.6, r#"stroke-dasharray="2 3""#),
+            "takeoff wave",
+        ),
+        (Mark::Circle("#777", r#"stroke="black""#), "separation"),
+        (
+            Mark::Circle("white", r##"stroke="#555" stroke-width="1.5""##),
+            "reconnection",
+        ),
+        (
+            Mark::Line("#444", 1.0, r#"stroke-dasharray="5 3""#),
+            "interface",
+        ),
+    ];
+    for (i, (mark, label)) in marks.into_iter().enumerate() {
+        let y = y + 20.0 * i as f64;
+        match mark {
+            Mark::Line(stroke, width, extra) => {
+                svg.line((x, y), (x + 22.0, y), stroke, width, extra)
+            }
+            Mark::Circle(fill, extra) => svg.circle(x + 11.0, y, 5.0, fill, extra),
+        }
+        svg.text(x + 28.0, y + 4.0, label, 10.0, Anchor::Start, "");
+    }
     svg.raw("</g>");
 }

@@ -40,16 +40,7 @@ impl Diagram {
             pts.push((px(window.1), py(v)));
         }
         svg.polyline(&pts, "#b2182b", 1.4, r#"class="wall-strain""#);
-        svg.rect(
-            LEFT,
-            top,
-            w,
-            WALL_H,
-            "none",
-            r#"stroke="black" stroke-width="1""#,
-        );
-        t.draw_below(svg, &px, top + WALL_H, 10.0);
-        y.draw_left(svg, &py, LEFT, 10.0);
+        Axis::draw_box(svg, (LEFT, top, w, WALL_H), (&t, &px), (&y, &py), 10.0);
         svg.vertical_text(LEFT - 45.0, top + WALL_H / 2.0, &y.label, 11.0);
         svg.text(
             LEFT + w,

@@ -205,12 +205,18 @@ mod tests {
         assert!((richardson_step(2.0, 10.0 / 9.0, 3.0, 2.0) - 1.0).abs() < 1e-15);
     }
 
+    /// The report's regression: uneven sizes were given the order
+    /// `ln(d1/d2) / ln(N2/N1)`, which assumes even spacing.
     #[test]
     fn uneven_sizes_recover_the_order() {
-        // the report's regression: sizes 200, 400, 1000 at order 1
         let sizes = [200, 400, 1000];
         let v: Vec<f64> = sizes.iter().map(|&n| 1.0 + 3.0 / n as f64).collect();
         let x = extrapolate(&sizes, &v, false).unwrap();
         assert!((x.order.unwrap() - 1.0).abs() < 1e-9);
+        // and the order alone, from the ratio of the changes
+        let n = [250.0, 1000.0, 2000.0];
+        let e = |n: f64| 1.0 - 0.5 / n;
+        let q = (e(n[1]) - e(n[0])).abs() / (e(n[2]) - e(n[1])).abs();
+        assert!((self_consistent_order(n, q) - 1.0).abs() < 1e-9);
     }
 }

@@ -1,11 +1,10 @@
 //! Fig. 6(b): `e(x)` at fixed `alpha` from the exact engine, with Eq. 11
 //! dashed where the paper says it holds (`alpha >= 0.1`).
 
-use crate::PaperError;
 use crate::claim::{csv, figure};
+use crate::{PaperError, exact_bilayer};
 use impact_model::{Bilayer, theory};
 use impact_plot::{Axis, Colour, LinePlot, Series};
-use impact_wave::WaveConfig;
 
 /// The alphas of the profiles: Eq. 11 is compared from 0.1 up.
 const PROFILE_ALPHAS: [f64; 6] = [0.005, 0.05, 0.1, 0.2, 0.3, 0.4];
@@ -35,15 +34,7 @@ pub(super) fn run(dir: &std::path::Path, xs: &[f64]) -> Result<Profiles, PaperEr
     for (&a, &c) in PROFILE_ALPHAS.iter().zip(&palette) {
         let pts: Vec<(f64, f64)> = xs
             .iter()
-            .map(|&x| {
-                let rod = Bilayer { x, alpha: a }
-                    .scene()
-                    .validate()
-                    .map_err(|e| PaperError::Engine(e.to_string()))?;
-                let o = impact_wave::simulate(&rod, &WaveConfig::default())
-                    .map_err(|e| PaperError::Engine(e.to_string()))?;
-                Ok((x, o.restitution))
-            })
+            .map(|&x| Ok((x, exact_bilayer(Bilayer { x, alpha: a })?.restitution)))
             .collect::<Result<_, PaperError>>()?;
         for &(x, ev) in &pts {
             let eq = if a >= 0.1 {
