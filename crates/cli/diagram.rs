@@ -9,15 +9,16 @@ use std::io::Write;
 
 /// Checks the window and scale flags.
 fn check_flags(a: &DiagramArgs) -> anyhow::Result<()> {
-    for (flag, v) in [
-        ("t-start", a.t_start),
-        ("t-end", a.t_end),
-        ("strain-scale", a.strain_scale),
+    // (flag, value, whether 0 is allowed: a window may start at the impact)
+    for (flag, v, zero_allowed) in [
+        ("t-start", a.t_start, true),
+        ("t-end", a.t_end, false),
+        ("strain-scale", a.strain_scale, false),
     ] {
         let Some(v) = v else { continue };
-        let ok = v.is_finite() && if flag == "t-start" { v >= 0.0 } else { v > 0.0 };
+        let ok = v.is_finite() && if zero_allowed { v >= 0.0 } else { v > 0.0 };
         if !ok {
-            let range = if flag == "t-start" { ">= 0" } else { "> 0" };
+            let range = if zero_allowed { ">= 0" } else { "> 0" };
             return Err(input(format!(
                 "--{flag} must be a finite number {range} (got {v})"
             )));

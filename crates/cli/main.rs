@@ -16,6 +16,7 @@ mod merge;
 mod output;
 mod reproduce;
 mod run;
+mod settings;
 mod sweep;
 
 use args::{Cli, Command};

@@ -32,7 +32,7 @@ pub fn reproduce(a: ReproduceArgs) -> anyhow::Result<()> {
         "wrote {}/index.html in {:.1} s ({} resolution): {agree} of {} statements of the paper agree with our numbers",
         a.out.display(),
         start.elapsed().as_secs_f64(),
-        settings.label,
+        settings.resolution,
         claims.len()
     );
     for c in claims.iter().filter(|c| c.verdict == Verdict::Disagrees) {

@@ -2,7 +2,7 @@
 //! of a homogeneous Kelvin-Voigt rod as a function of `tau c / L` alone.
 
 use crate::{ChainConfig, ChainError, simulate};
-use impact_model::{Allowed, Layer, Scene, SettingError, WallContact};
+use impact_model::{Allowed, Layer, Rod, Scene, SettingError, WallContact};
 
 /// How the tables in `data/calibration/kelvin-voigt-<law>.csv` are made: each entry
 /// is the chain at `n` and `2n` masses, Richardson-extrapolated assuming the
@@ -16,18 +16,25 @@ pub struct CalibrationPoint {
     pub correction: f64,
 }
 
-/// Restitution of a homogeneous rod (`L = c = 1`) with `tau c / L = t`
-/// under the wall contact law `law`.
-pub fn homogeneous_restitution(t: f64, masses: usize, law: WallContact) -> Result<f64, ChainError> {
+/// The homogeneous Kelvin-Voigt rod (`L = c = v_b = 1`) with
+/// `tau c / L = t` under the wall contact law `law`: the rod the table
+/// (and the paper's Fig. 2) is about.
+pub fn homogeneous_rod(t: f64, law: WallContact) -> Result<Rod, ChainError> {
     let mut layer = Layer::elastic(1.0, 1.0, 1.0);
     layer.relaxation_time = Some(t);
-    let rod = Scene {
+    Scene {
         impact_speed: 1.0,
         layers: vec![layer],
         wall_contact: Some(law),
     }
     .validate()
-    .map_err(|_| SettingError::new("tau_c_over_l", Allowed::NonNegative, t))?;
+    .map_err(|_| SettingError::new("tau_c_over_l", Allowed::NonNegative, t).into())
+}
+
+/// Restitution of a homogeneous rod (`L = c = 1`) with `tau c / L = t`
+/// under the wall contact law `law`.
+pub fn homogeneous_restitution(t: f64, masses: usize, law: WallContact) -> Result<f64, ChainError> {
+    let rod = homogeneous_rod(t, law)?;
     Ok(simulate(
         &rod,
         &ChainConfig {
@@ -49,8 +56,13 @@ pub fn calibration_point(
     let correction = fine - coarse;
     // an elastic rod gives back all its energy: e = 1 exactly, where the
     // chains' dispersion leaves the extrapolation a little off (the
-    // correction still says by how much the chains miss it)
-    let restitution = if t == 0.0 { 1.0 } else { fine + correction };
+    // correction still says by how much the chains miss it); otherwise first
+    // order in N, sizes in ratio 2: the step adds `fine - coarse`
+    let restitution = if t == 0.0 {
+        1.0
+    } else {
+        impact_model::numerics::richardson_step(coarse, fine, 2.0, 1.0)
+    };
     Ok(CalibrationPoint {
         tau_c_over_l: t,
         restitution,

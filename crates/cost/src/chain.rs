@@ -3,7 +3,7 @@
 use crate::{CostError, CostSettings, exact_reference};
 use impact_chain::{ChainConfig, simulate};
 use impact_model::Rod;
-use impact_model::richardson::extrapolate;
+use impact_model::numerics::extrapolate;
 use serde::Serialize;
 use std::time::Instant;
 
@@ -117,7 +117,7 @@ pub fn chain_study(
 }
 
 /// The chain's own limit: Richardson over the three largest sizes
-/// (`impact_model::richardson`), or the largest size's value when there
+/// (`impact_model::numerics::richardson`), or the largest size's value when there
 /// are fewer than three.
 fn limit_of(runs: &[(usize, f64, f64, f64, u64)]) -> f64 {
     let sizes: Vec<usize> = runs.iter().map(|r| r.0).collect();

@@ -5,11 +5,20 @@ use crate::{CostError, timed};
 use impact_model::Bilayer;
 use serde::Serialize;
 
+/// Which parameter a growth point varies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum GrowthSweep {
+    /// `x` varied at `alpha = 0.005` (`t2 / t1` grows).
+    X,
+    /// `alpha` varied at `x = 0.5`.
+    Alpha,
+}
+
 /// Exact-engine work at one bilayer.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Growth {
-    /// `"x"` (x varied at alpha = 0.005) or `"alpha"` (alpha varied at x = 0.5).
-    pub sweep: String,
+    pub sweep: GrowthSweep,
     pub x: f64,
     pub alpha: f64,
     pub transit_ratio: f64,
@@ -20,16 +29,16 @@ pub struct Growth {
 /// Events and time along `x` at small `alpha` (large `t2 / t1`) and along
 /// `alpha` at `x = 0.5`.
 pub fn growth_study() -> Result<Vec<Growth>, CostError> {
-    let mut points: Vec<(&str, f64, f64)> = [0.5, 0.7, 0.8, 0.9, 0.95, 0.98, 0.99, 0.995]
+    let mut points: Vec<(GrowthSweep, f64, f64)> = [0.5, 0.7, 0.8, 0.9, 0.95, 0.98, 0.99, 0.995]
         .iter()
-        .map(|&x| ("x", x, 0.005))
+        .map(|&x| (GrowthSweep::X, x, 0.005))
         .collect();
     points.extend(
         [
             0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 0.8, 0.95, 0.99,
         ]
         .iter()
-        .map(|&a| ("alpha", 0.5, a)),
+        .map(|&a| (GrowthSweep::Alpha, 0.5, a)),
     );
     points
         .into_iter()
@@ -43,7 +52,7 @@ pub fn growth_study() -> Result<Vec<Growth>, CostError> {
                 )?)
             })?;
             Ok(Growth {
-                sweep: sweep.to_string(),
+                sweep,
                 x,
                 alpha,
                 transit_ratio: b.transit_ratio(),

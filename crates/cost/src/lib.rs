@@ -12,7 +12,7 @@ mod report;
 
 pub use chain::{ChainCost, ChainKind, ChainStudy, Headline, chain_study, headline};
 pub use exact::{ExactCost, exact_study};
-pub use growth::{Growth, growth_study};
+pub use growth::{Growth, GrowthSweep, growth_study};
 pub use report::{CostReport, write_report};
 
 use impact_model::Rod;

@@ -3,7 +3,8 @@
 use crate::CostError;
 use crate::chain::{ChainCost, ChainKind, ChainStudy, Headline};
 use crate::exact::ExactCost;
-use crate::growth::Growth;
+use crate::growth::{Growth, GrowthSweep};
+use impact_model::numerics::{pareto_front, power_fit};
 use impact_output::{Head, Layout, ReportDir, Stylesheet, escape};
 use impact_plot::{Axis, Colour, LinePlot, Marker, Scale, Series, write_svg_and_png};
 use serde::Serialize;
@@ -35,35 +36,6 @@ pub struct CostReport {
 /// Errors below this are drawn at it (the exact engine's are often 0).
 pub const ERROR_FLOOR: f64 = 1e-16;
 
-fn slope(points: &[(f64, f64)]) -> f64 {
-    let p: Vec<(f64, f64)> = points
-        .iter()
-        .filter(|(x, y)| *x > 0.0 && *y > 0.0)
-        .map(|(x, y)| (x.ln(), y.ln()))
-        .collect();
-    let n = p.len() as f64;
-    let (mx, my) = (
-        p.iter().map(|v| v.0).sum::<f64>() / n,
-        p.iter().map(|v| v.1).sum::<f64>() / n,
-    );
-    p.iter().map(|v| (v.0 - mx) * (v.1 - my)).sum::<f64>()
-        / p.iter().map(|v| (v.0 - mx).powi(2)).sum::<f64>()
-}
-
-/// The Pareto front of `(time, error, label)`: no other point is both faster
-/// and more accurate. Sorted by time; error strictly decreasing along it.
-pub fn pareto_front(points: &[(f64, f64, String)]) -> Vec<(f64, f64, String)> {
-    let mut sorted: Vec<&(f64, f64, String)> = points.iter().collect();
-    sorted.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
-    let mut front: Vec<(f64, f64, String)> = Vec::new();
-    for p in sorted {
-        if front.last().is_none_or(|last| p.1 < last.1) {
-            front.push(p.clone());
-        }
-    }
-    front
-}
-
 impl CostReport {
     /// Assembles a report (fits and front) from the measurements.
     pub fn new(
@@ -79,18 +51,20 @@ impl CostReport {
             .iter()
             .filter(|c| c.kind == ChainKind::Elastic && c.study == ChainStudy::Masses)
             .collect();
-        let chain_time_exponent = slope(
+        let chain_time_exponent = power_fit(
             &n_study
                 .iter()
                 .map(|c| (c.masses as f64, c.seconds))
                 .collect::<Vec<_>>(),
-        );
-        let chain_work_exponent = slope(
+        )
+        .exponent;
+        let chain_work_exponent = power_fit(
             &n_study
                 .iter()
                 .map(|c| (c.masses as f64, c.mass_steps))
                 .collect::<Vec<_>>(),
-        );
+        )
+        .exponent;
         let exact_pts: Vec<(f64, f64, String)> = exact
             .iter()
             .filter(|e| e.point == point)
@@ -339,8 +313,10 @@ pub fn write_report(target: &Path, r: &CostReport) -> Result<(), CostError> {
         ],
     };
     write_svg_and_png(&dir.join("chain-growth"), &growth.to_svg())?;
-    let along_x: Vec<&Growth> = r.growth.iter().filter(|g| g.sweep == "x").collect();
-    let along_a: Vec<&Growth> = r.growth.iter().filter(|g| g.sweep == "alpha").collect();
+    let along = |sweep: GrowthSweep| -> Vec<&Growth> {
+        r.growth.iter().filter(|g| g.sweep == sweep).collect()
+    };
+    let (along_x, along_a) = (along(GrowthSweep::X), along(GrowthSweep::Alpha));
     let exact_growth = LinePlot {
         title: "Exact engine: events vs t2/t1".into(),
         x: Axis::fit(

@@ -1,8 +1,18 @@
 //! The cost study on a cheap point: it runs end to end, errors fall as each
 //! setting tightens, and the Pareto front is monotone. No timing is asserted.
 
-use impact_cost::{ChainKind, ChainStudy, CostSettings, cost_study, write_report};
+use impact_cost::{
+    ChainCost, ChainKind, ChainStudy, CostReport, CostSettings, cost_study, write_report,
+};
 use impact_model::Bilayer;
+
+/// The chain rows of one kind and study, in the report's order.
+fn rows(r: &CostReport, kind: ChainKind, study: ChainStudy) -> Vec<&ChainCost> {
+    r.chain
+        .iter()
+        .filter(|c| c.kind == kind && c.study == study)
+        .collect()
+}
 
 #[test]
 fn the_cost_study_runs_and_its_errors_fall_as_settings_tighten() {
@@ -11,11 +21,7 @@ fn the_cost_study_runs_and_its_errors_fall_as_settings_tighten() {
     let r = cost_study("x = 0.2, alpha = 0.05", &rod, &s, &|_| {}).unwrap();
 
     // chain, elastic: error strictly falls as N doubles
-    let n: Vec<_> = r
-        .chain
-        .iter()
-        .filter(|c| c.kind == ChainKind::Elastic && c.study == ChainStudy::Masses)
-        .collect();
+    let n: Vec<_> = rows(&r, ChainKind::Elastic, ChainStudy::Masses);
     assert_eq!(n.len(), s.sizes.len());
     for w in n.windows(2) {
         assert!(
@@ -34,21 +40,13 @@ fn the_cost_study_runs_and_its_errors_fall_as_settings_tighten() {
     );
     // chain, viscous: a finite limit, near the finest chain (its convergence
     // here is not monotone: 0.6334, 0.6328, 0.6316, 0.6325 for N = 50..400)
-    let v: Vec<_> = r
-        .chain
-        .iter()
-        .filter(|c| c.kind == ChainKind::Viscous && c.study == ChainStudy::Masses)
-        .collect();
+    let v: Vec<_> = rows(&r, ChainKind::Viscous, ChainStudy::Masses);
     assert!(
         r.viscous_limit.is_finite()
             && (v.last().unwrap().restitution - r.viscous_limit).abs() < 0.01
     );
     // chain, time step: a smaller step costs more steps
-    let dt: Vec<_> = r
-        .chain
-        .iter()
-        .filter(|c| c.kind == ChainKind::Elastic && c.study == ChainStudy::TimeStep)
-        .collect();
+    let dt: Vec<_> = rows(&r, ChainKind::Elastic, ChainStudy::TimeStep);
     assert_eq!(dt.len(), s.dt_factors.len());
     let mut by_dt: Vec<_> = dt.iter().map(|c| (c.dt_factor, c.steps)).collect();
     by_dt.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -123,7 +121,11 @@ fn the_cost_study_runs_and_its_errors_fall_as_settings_tighten() {
     assert!(h.ratio > 1.0);
 
     // growth: events grow with t2/t1 along alpha = 0.005
-    let g: Vec<_> = r.growth.iter().filter(|g| g.sweep == "x").collect();
+    let g: Vec<_> = r
+        .growth
+        .iter()
+        .filter(|g| g.sweep == impact_cost::GrowthSweep::X)
+        .collect();
     assert!(g.last().unwrap().events > 10 * g.first().unwrap().events);
 
     let dir = std::env::temp_dir().join(format!("impact-cost-{}", std::process::id()));

@@ -34,6 +34,22 @@ fn three_layers() -> Rod {
     .unwrap()
 }
 
+/// The chain at `masses`, run to the end, its strain recorded on a
+/// `raster` of (frames, rows).
+fn chain_with_raster(rod: &Rod, masses: usize, raster: (u64, usize)) -> ChainEngine {
+    let config = ChainConfig {
+        masses,
+        record: ChainRecord {
+            wall_every: None,
+            raster: Some(raster),
+        },
+        ..ChainConfig::default()
+    };
+    let mut chain = ChainEngine::new(rod, config).unwrap();
+    chain.run().unwrap();
+    chain
+}
+
 /// The exact engine run to the end, and its diagram with the exact picture.
 fn exact_diagram(rod: &Rod) -> Diagram {
     let run = impact_diagram::exact_run(rod).unwrap();
@@ -92,16 +108,7 @@ fn at_large_n_the_chains_picture_agrees_with_the_exact_one() {
         let Picture::Exact { field, .. } = &d.pictures[0].1 else {
             unreachable!()
         };
-        let config = ChainConfig {
-            masses: 4000,
-            record: ChainRecord {
-                wall_every: None,
-                raster: Some((2000, 40)),
-            },
-            ..ChainConfig::default()
-        };
-        let mut chain = ChainEngine::new(&rod, config).unwrap();
-        chain.run().unwrap();
+        let chain = chain_with_raster(&rod, 4000, (2000, 40));
         let total = rod.total_length();
         let (mut good, mut all) = (0, 0);
         let mut diffs = Vec::new();
@@ -241,16 +248,7 @@ fn the_hard_corner_stays_light() {
 fn side_by_side_shares_axes_and_scale() {
     let rod = bilayer(0.3, 0.3);
     let mut d = exact_diagram(&rod);
-    let config = ChainConfig {
-        masses: 300,
-        record: ChainRecord {
-            wall_every: None,
-            raster: Some((50, 60)),
-        },
-        ..ChainConfig::default()
-    };
-    let mut chain = ChainEngine::new(&rod, config).unwrap();
-    chain.run().unwrap();
+    let chain = chain_with_raster(&rod, 300, (50, 60));
     d.pictures.push((
         "chain".into(),
         Picture::Chain(ChainPicture {

@@ -7,20 +7,21 @@
 //! - [`interface`]: reflection/transmission of strain fronts at an interface, as
 //!   pure functions of the two layers;
 //! - [`theory`]: the paper's closed-form results (Sec. VI, Appendix B);
-//! - [`Outcome`]: what every engine returns, with the paper's bounce filter.
+//! - [`Outcome`]: what every engine returns, with the paper's bounce filter;
+//! - [`numerics`]: the numerical routines the studies share (Richardson
+//!   extrapolation, bisection, fits, rank correlation, Pareto fronts).
 //!
 //! Conventions (see `shared/DESIGN.md` §1): `y` points up from the wall, layer 0
 //! touches the wall, unit cross-section, strain is positive in tension.
 
 pub mod bilayer;
-pub mod bisect;
 pub mod calibration;
 pub mod contact;
 pub mod escape;
 pub mod interface;
 pub mod materials;
+pub mod numerics;
 pub mod outcome;
-pub mod richardson;
 pub mod rigid_bottom;
 pub mod scene;
 pub mod setting;

@@ -148,7 +148,7 @@ pub struct Outcome {
     /// The chain's `e` at growing `N`, extrapolated to `N -> infinity`,
     /// when the run was such a ladder (this outcome is then its finest run).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub extrapolation: Option<crate::richardson::Extrapolation>,
+    pub extrapolation: Option<crate::numerics::Extrapolation>,
 }
 
 impl Outcome {

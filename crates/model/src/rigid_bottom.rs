@@ -52,20 +52,8 @@ pub fn velocity(v: f64, s: f64) -> f64 {
 /// (Newton from above, bracketed: `height > 0` just after leaving, and
 /// `height(s) < 0` for `s >= 1 + v`).
 fn landing(v: f64) -> f64 {
-    let (mut lo, mut hi) = (0.0, 1.0 + v);
     // bisection to a good bracket, then Newton
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        if height(v, mid) > 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-        if hi - lo < 1e-6 * hi {
-            break;
-        }
-    }
-    let mut s = 0.5 * (lo + hi);
+    let mut s = crate::numerics::bisect_to(0.0, 1.0 + v, 60, 1e-6, |s| height(v, s) > 0.0);
     for _ in 0..30 {
         let step = height(v, s) / velocity(v, s);
         s -= step;

@@ -173,7 +173,7 @@ pub fn wall_strain_after_first_return(alpha: f64) -> f64 {
 /// ```
 pub fn upper_boundary_alpha() -> f64 {
     // f(lo) < 0 < f(hi): the strain is tensile below the root.
-    crate::bisect::bisect(0.5, 0.999_999, 200, |a| {
+    crate::numerics::bisect(0.5, 0.999_999, 200, |a| {
         wall_strain_after_first_return(a) < 0.0
     })
 }

@@ -2,8 +2,9 @@
 //! bounce sequence, and its `e(x)` against the exact engine at small `alpha`.
 
 use crate::claim::{Claim, Item, csv, figure};
-use crate::{PaperError, Settings};
+use crate::{PaperError, Settings, exact_bilayer};
 use impact_model::Bilayer;
+use impact_model::numerics::exponential_fit;
 use impact_model::rigid_bottom::{height, rigid_bottom};
 use impact_plot::{Axis, Colour, LinePlot, Series};
 use rayon::prelude::*;
@@ -36,29 +37,16 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
         .filter(|b| b.speed > 1e-6)
         .map(|b| (b.time, b.speed))
         .collect();
-    let n = pts.len() as f64;
-    let (mt, ml) = (
-        pts.iter().map(|p| p.0).sum::<f64>() / n,
-        pts.iter().map(|p| p.1.ln()).sum::<f64>() / n,
-    );
-    let slope = pts
-        .iter()
-        .map(|p| (p.0 - mt) * (p.1.ln() - ml))
-        .sum::<f64>()
-        / pts.iter().map(|p| (p.0 - mt).powi(2)).sum::<f64>();
-    let k = -1.0 / slope;
+    let k = -1.0 / exponential_fit(&pts).slope;
     // e(x): model against the exact engine at small alpha
     let xs: Vec<f64> = (1..20).map(|i| f64::from(i) * 0.05).collect();
     let compared: Vec<(f64, f64, f64)> = xs
         .par_iter()
         .map(|&x| {
-            let rod = Bilayer {
+            let exact = exact_bilayer(Bilayer {
                 x,
                 alpha: s.appendix_alpha,
-            }
-            .scene()
-            .validate()?;
-            let exact = impact_wave::simulate(&rod, &impact_wave::WaveConfig::default())?;
+            })?;
             Ok((x, rigid_bottom(x).restitution, exact.restitution))
         })
         .collect::<Result<_, PaperError>>()?;

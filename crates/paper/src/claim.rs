@@ -74,21 +74,3 @@ pub fn csv(
     std::fs::write(dir.join(&name), text)?;
     Ok(name)
 }
-
-/// Least-squares slope and intercept of `ln y` against `ln x`.
-pub fn power_fit(points: &[(f64, f64)]) -> (f64, f64) {
-    let pts: Vec<(f64, f64)> = points
-        .iter()
-        .filter(|(x, y)| *x > 0.0 && *y > 0.0)
-        .map(|(x, y)| (x.ln(), y.ln()))
-        .collect();
-    let n = pts.len() as f64;
-    let (mx, my) = (
-        pts.iter().map(|p| p.0).sum::<f64>() / n,
-        pts.iter().map(|p| p.1).sum::<f64>() / n,
-    );
-    let cov: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-    let var: f64 = pts.iter().map(|p| (p.0 - mx).powi(2)).sum();
-    let slope = cov / var;
-    (slope, (my - slope * mx).exp())
-}

@@ -1,15 +1,16 @@
 //! The cost section: what accuracy costs in time (`impact cost`), at the
 //! central point x = alpha = 0.3, and the paper's N = 10^4 judged by it.
 
-use crate::claim::{Claim, Item, power_fit};
-use crate::{PaperError, Settings};
+use crate::claim::{Claim, Item};
+use crate::{PaperError, Resolution, Settings};
 use impact_cost::{ChainKind, ChainStudy, CostSettings, cost_study, write_report};
 use impact_model::Bilayer;
+use impact_model::numerics::power_fit;
 use std::path::Path;
 
 pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
     let rod = Bilayer { x: 0.3, alpha: 0.3 }.scene().validate()?;
-    let settings = if s.label == "full" {
+    let settings = if s.resolution == Resolution::Full {
         CostSettings::standard()
     } else {
         CostSettings::tiny()
@@ -22,7 +23,8 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
         .filter(|c| c.kind == ChainKind::Elastic && c.study == ChainStudy::Masses)
         .map(|c| (c.masses as f64, c.restitution_error))
         .collect();
-    let (p, c) = power_fit(&n_study);
+    let fit = power_fit(&n_study);
+    let (p, c) = (fit.exponent, fit.prefactor());
     let at_paper_n = c * 1e4f64.powf(p);
     let h = &r.headline;
     let reached = h

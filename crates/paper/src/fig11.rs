@@ -1,9 +1,10 @@
 //! Fig. 11 (Appendix A): the chain's finite-size error for a homogeneous
 //! elastic rod, `1 - e` against `N`, with its power-law fit.
 
-use crate::claim::{Claim, Item, csv, figure, power_fit};
+use crate::claim::{Claim, Item, csv, figure};
 use crate::{PaperError, Settings};
 use impact_chain::{ChainConfig, simulate};
+use impact_model::numerics::power_fit;
 use impact_model::{Layer, Scene};
 use impact_plot::{Axis, Colour, LinePlot, Series};
 use rayon::prelude::*;
@@ -31,7 +32,8 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
             .map_err(PaperError::from)
         })
         .collect::<Result<_, _>>()?;
-    let (p, c) = power_fit(&errors);
+    let fit = power_fit(&errors);
+    let (p, c) = (fit.exponent, fit.prefactor());
     let at50 = errors
         .iter()
         .find(|e| e.0 == 50.0)

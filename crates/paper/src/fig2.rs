@@ -4,9 +4,11 @@
 //! `t_c` against `tau c / L`.
 
 use crate::PaperError;
-use crate::claim::{Claim, Item, csv, figure, power_fit};
+use crate::claim::{Claim, Item, csv, figure};
+use impact_chain::calibrate::homogeneous_rod;
 use impact_chain::{ChainConfig, ChainEngine, ChainRecord};
-use impact_model::{Layer, Scene, WallContact};
+use impact_model::WallContact;
+use impact_model::numerics::power_fit;
 use impact_plot::{Axis, Colour, LinePlot, Series};
 use rayon::prelude::*;
 use std::path::Path;
@@ -21,14 +23,7 @@ struct Run {
 }
 
 fn run_one(tau: f64, masses: usize, law: WallContact) -> Result<Run, PaperError> {
-    let mut layer = Layer::elastic(1.0, 1.0, 1.0);
-    layer.relaxation_time = Some(tau);
-    let rod = Scene {
-        impact_speed: 1.0,
-        layers: vec![layer],
-        wall_contact: Some(law),
-    }
-    .validate()?;
+    let rod = homogeneous_rod(tau, law)?;
     let config = ChainConfig {
         masses,
         record: ChainRecord {
@@ -99,13 +94,14 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
         .filter(|r| r.tau <= 0.05)
         .map(|r| (r.tau, 1.0 - r.e))
         .collect();
-    let (p, prefactor) = power_fit(&small);
+    let fit = power_fit(&small);
+    let (p, prefactor) = (fit.exponent, fit.prefactor());
     let unload: Vec<(f64, f64)> = runs
         .iter()
         .filter(|r| r.tau <= 0.05)
         .map(|r| (r.tau, r.unloading))
         .collect();
-    let (q, _) = power_fit(&unload);
+    let q = power_fit(&unload).exponent;
     let at = |runs: &[Run], tau: f64| {
         runs.iter()
             .find(|r| (r.tau - tau).abs() < 1e-9)
@@ -124,14 +120,15 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
         .collect::<Vec<_>>()
         .join("; ");
     let taus: Vec<f64> = runs.iter().map(|r| r.tau).collect();
+    let tau_axis = Axis::fit(
+        taus.iter().copied(),
+        impact_plot::Scale::Log,
+        "tau c / L",
+        0.05,
+    );
     let fig_a = LinePlot {
         title: format!("Fig. 2(a): 1 - e vs tau c/L (chain, N = {})", s.fig2_masses),
-        x: Axis::fit(
-            taus.iter().copied(),
-            impact_plot::Scale::Log,
-            "tau c / L",
-            0.05,
-        ),
+        x: tau_axis.clone(),
         y: Axis::fit(
             runs.iter().chain(&unilateral).map(|r| 1.0 - r.e),
             impact_plot::Scale::Log,
@@ -179,12 +176,7 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
     };
     let fig_c = LinePlot {
         title: "Fig. 2(b, inset): unloading time and contact time".into(),
-        x: Axis::fit(
-            taus.iter().copied(),
-            impact_plot::Scale::Log,
-            "tau c / L",
-            0.05,
-        ),
+        x: tau_axis,
         y: Axis::fit(
             runs.iter().flat_map(|r| [r.unloading, r.contact_time]),
             impact_plot::Scale::Log,

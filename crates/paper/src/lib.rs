@@ -18,7 +18,7 @@ mod settings;
 mod visco;
 
 pub use claim::{Claim, Item, Verdict};
-pub use settings::Settings;
+pub use settings::{Resolution, Settings};
 
 use impact_output::ReportDir;
 use std::path::Path;
@@ -39,10 +39,19 @@ pub enum PaperError {
     Chain(#[from] impact_chain::ChainError),
     #[error(transparent)]
     Cost(#[from] impact_cost::CostError),
-    /// A figure's own failure, in words (and, until those modules are
-    /// split, the engine errors of `maps.rs` and `visco.rs`).
+    /// A figure's own failure, in words.
     #[error("{0}")]
     Engine(String),
+}
+
+/// The exact engine at its default settings on the bilayer `b`: the
+/// reference the figures set the paper's formulas and models against.
+fn exact_bilayer(b: impact_model::Bilayer) -> Result<impact_model::Outcome, PaperError> {
+    let rod = b.scene().validate()?;
+    Ok(impact_wave::simulate(
+        &rod,
+        &impact_wave::WaveConfig::default(),
+    )?)
 }
 
 /// One figure group: writes its files into the directory, returns its item.

@@ -25,8 +25,8 @@ pub fn page(dir: &std::path::Path, settings: &Settings, items: &[Item]) -> Strin
 <h2>Summary</h2>
 <table><tr><th>figure</th><th>the paper</th><th>gives</th><th>we find</th><th>verdict</th></tr>
 "#,
-        label = settings.label,
-        quick = if settings.label == "quick" {
+        label = settings.resolution,
+        quick = if settings.resolution == crate::Resolution::Quick {
             " (smaller chains and coarser scans than the paper's, for a run of a few minutes; --full uses the paper's N = 10^4)"
         } else {
             ""
@@ -99,7 +99,7 @@ pub fn page(dir: &std::path::Path, settings: &Settings, items: &[Item]) -> Strin
         &Head {
             title: &format!(
                 "Impact of composite soft-rigid elastic projectiles: reproduction ({})",
-                settings.label
+                settings.resolution
             ),
             style: Stylesheet::shared()
                 .rule(

@@ -1,10 +1,30 @@
 //! Resolutions of a reproduction: `--quick` (minutes) and `--full` (the
 //! paper's).
 
+/// Which of the resolutions below a reproduction runs at.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Resolution {
+    Quick,
+    Full,
+    /// Toy sizes for the tests.
+    Tiny,
+}
+
+impl std::fmt::Display for Resolution {
+    /// The name the report page and the summary line give it.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Resolution::Quick => "quick",
+            Resolution::Full => "full",
+            Resolution::Tiny => "tiny (tests)",
+        })
+    }
+}
+
 /// What to compute, and how finely.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Settings {
-    pub label: &'static str,
+    pub resolution: Resolution,
     /// Fig. 2: values of `tau c / L`, and the chain size.
     pub fig2_tau: Vec<f64>,
     pub fig2_masses: usize,
@@ -35,7 +55,7 @@ impl Settings {
     /// scans. Clearly labelled as such on every page.
     pub fn quick() -> Self {
         Self {
-            label: "quick",
+            resolution: Resolution::Quick,
             fig2_tau: log_range(1e-3, 1.0, 13),
             fig2_masses: 1000,
             map_step: 0.005,
@@ -52,7 +72,7 @@ impl Settings {
     /// The paper's resolution: chains of 10^4 masses. Hours on 2 cores.
     pub fn full() -> Self {
         Self {
-            label: "full",
+            resolution: Resolution::Full,
             fig2_tau: log_range(1e-3, 1.0, 19),
             fig2_masses: 10_000,
             map_step: 0.005,
@@ -69,7 +89,7 @@ impl Settings {
     /// Seconds, for tests: every item at a toy resolution.
     pub fn tiny() -> Self {
         Self {
-            label: "tiny (tests)",
+            resolution: Resolution::Tiny,
             fig2_tau: vec![0.003, 0.01, 0.03, 1.0],
             fig2_masses: 100,
             map_step: 0.05,

@@ -131,6 +131,28 @@ impl Axis {
         }
     }
 
+    /// The plot box `(left, top, width, height)` (pixels) outlined, with
+    /// `x`'s ticks below it and `y`'s left of it: the frame every figure
+    /// draws the same way.
+    pub fn draw_box(
+        svg: &mut crate::Svg,
+        (left, top, width, height): (f64, f64, f64, f64),
+        (x, px): (&Axis, &dyn Fn(f64) -> f64),
+        (y, py): (&Axis, &dyn Fn(f64) -> f64),
+        font: f64,
+    ) {
+        svg.rect(
+            left,
+            top,
+            width,
+            height,
+            "none",
+            r#"stroke="black" stroke-width="1""#,
+        );
+        x.draw_below(svg, px, top + height, font);
+        y.draw_left(svg, py, left, font);
+    }
+
     /// Ticks and their labels left of a vertical axis at `x` (pixels).
     pub fn draw_left(&self, svg: &mut crate::Svg, py: &dyn Fn(f64) -> f64, x: f64, font: f64) {
         for (v, label) in self.ticks() {

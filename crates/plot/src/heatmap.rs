@@ -186,16 +186,7 @@ pub(crate) fn frame(
     px: impl Fn(f64) -> f64,
     py: impl Fn(f64) -> f64,
 ) {
-    svg.rect(
-        LEFT,
-        TOP,
-        SIZE,
-        SIZE,
-        "none",
-        r#"stroke="black" stroke-width="1""#,
-    );
-    x.draw_below(svg, &px, TOP + SIZE, 11.0);
-    y.draw_left(svg, &py, LEFT, 11.0);
+    Axis::draw_box(svg, (LEFT, TOP, SIZE, SIZE), (x, &px), (y, &py), 11.0);
     svg.text(
         LEFT + SIZE / 2.0,
         TOP + SIZE + 42.0,

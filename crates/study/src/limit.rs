@@ -1,6 +1,6 @@
 //! The chain's answer in the continuum limit: the same impact at `N`, `2N`,
 //! `4N` masses (more when a target asks), Richardson-extrapolated to
-//! `N -> infinity` with an error estimate (`impact_model::richardson`).
+//! `N -> infinity` with an error estimate (`impact_model::numerics::richardson`).
 //!
 //! Why: the viscous chain converges in `N` at about order one, so one `N`
 //! carries a finite-size error as large as `1e-3` at `N = 10^3`, while three
@@ -9,7 +9,7 @@
 //! steps proportional to `N`).
 
 use impact_chain::{ChainConfig, ChainEngine, ChainError, ChainRecord, ChainRecording};
-use impact_model::richardson::{Extrapolation, extrapolate};
+use impact_model::numerics::{Extrapolation, extrapolate};
 use impact_model::{Allowed, Outcome, Rod, SettingError};
 
 /// How far to refine.

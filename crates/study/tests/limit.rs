@@ -4,7 +4,7 @@
 //! order in `N` is not clean.
 
 use impact_chain::{ChainConfig, simulate};
-use impact_model::richardson::extrapolate;
+use impact_model::numerics::extrapolate;
 use impact_model::{Bilayer, Layer, Rod, Scene};
 use impact_study::{LimitSettings, chain_limit};
 

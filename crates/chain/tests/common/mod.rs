@@ -52,12 +52,9 @@ pub fn chain(rod: &Rod, masses: usize) -> Outcome {
     .unwrap()
 }
 
-/// Least-squares slope of ln(y) against ln(x).
+/// Least-squares slope of ln(y) against ln(x) (`impact_model::numerics`),
+/// every point having a logarithm: none may be left out of the fit.
 pub fn log_slope(points: &[(f64, f64)]) -> f64 {
-    let n = points.len() as f64;
-    let (lx, ly): (Vec<f64>, Vec<f64>) = points.iter().map(|(x, y)| (x.ln(), y.ln())).unzip();
-    let (mx, my) = (lx.iter().sum::<f64>() / n, ly.iter().sum::<f64>() / n);
-    let cov: f64 = lx.iter().zip(&ly).map(|(x, y)| (x - mx) * (y - my)).sum();
-    let var: f64 = lx.iter().map(|x| (x - mx).powi(2)).sum();
-    cov / var
+    assert!(points.iter().all(|p| p.0 > 0.0 && p.1 > 0.0), "{points:?}");
+    impact_model::numerics::power_fit(points).exponent
 }

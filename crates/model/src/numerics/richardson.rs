@@ -88,7 +88,7 @@ pub fn extrapolate(sizes: &[usize], values: &[f64], sharp_fronts: bool) -> Optio
     }
     if let Some(p) = order {
         let p = p.clamp(CLEAN_ORDERS.0, CLEAN_ORDERS.1);
-        out.value = v[2] + d2 / (r.powf(p) - 1.0);
+        out.value = richardson_step(v[1], v[2], r, p);
         out.error = SAFETY_CLEAN * d2.abs() / (r.powf(p) - 1.0);
     }
     if why.is_some() {
@@ -97,6 +97,13 @@ pub fn extrapolate(sizes: &[usize], values: &[f64], sharp_fronts: bool) -> Optio
         out.note = why;
     }
     Some(out)
+}
+
+/// One Richardson step: the limit of `e(N) = e_inf + C N^-p` from its
+/// values `coarse` at `N` and `fine` at `ratio N`,
+/// `fine + (fine - coarse) / (ratio^p - 1)`.
+pub fn richardson_step(coarse: f64, fine: f64, ratio: f64, order: f64) -> f64 {
+    fine + (fine - coarse) / (ratio.powf(order) - 1.0)
 }
 
 /// The order `p` of `e(N) = e_inf + C N^-p` through three sizes, when the
@@ -119,7 +126,7 @@ pub fn self_consistent_order(n: [f64; 3], q: f64) -> f64 {
     if q >= ratio(hi) {
         return hi;
     }
-    crate::bisect::bisect(lo, hi, 100, |p| ratio(p) < q)
+    super::bisect(lo, hi, 100, |p| ratio(p) < q)
 }
 
 #[cfg(test)]
@@ -188,12 +195,28 @@ mod tests {
         assert!(sharp.note.unwrap().contains("elastic"));
     }
 
+    /// `e(N) = 2 + 1/N` at N = 10 and 20: 2.1 and 2.05, so one step at
+    /// order 1 and ratio 2 gives 2.05 + (-0.05) / 1 = 2 exactly in reals.
+    #[test]
+    fn one_step_removes_a_first_order_term() {
+        assert!((richardson_step(2.1, 2.05, 2.0, 1.0) - 2.0).abs() < 1e-15);
+        // order 2, ratio 3: 1 + 1/N^2 at 1 and 3 is 2 and 10/9;
+        // 10/9 + (10/9 - 2) / 8 = 10/9 - 1/9 = 1
+        assert!((richardson_step(2.0, 10.0 / 9.0, 3.0, 2.0) - 1.0).abs() < 1e-15);
+    }
+
+    /// The report's regression: uneven sizes were given the order
+    /// `ln(d1/d2) / ln(N2/N1)`, which assumes even spacing.
     #[test]
     fn uneven_sizes_recover_the_order() {
-        // the report's regression: sizes 200, 400, 1000 at order 1
         let sizes = [200, 400, 1000];
         let v: Vec<f64> = sizes.iter().map(|&n| 1.0 + 3.0 / n as f64).collect();
         let x = extrapolate(&sizes, &v, false).unwrap();
         assert!((x.order.unwrap() - 1.0).abs() < 1e-9);
+        // and the order alone, from the ratio of the changes
+        let n = [250.0, 1000.0, 2000.0];
+        let e = |n: f64| 1.0 - 0.5 / n;
+        let q = (e(n[1]) - e(n[0])).abs() / (e(n[2]) - e(n[1])).abs();
+        assert!((self_consistent_order(n, q) - 1.0).abs() < 1e-9);
     }
 }
