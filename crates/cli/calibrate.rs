@@ -2,10 +2,11 @@
 
 use crate::args::CalibrateArgs;
 use crate::input;
+use crate::jobs::Bar;
 use crate::output::write_atomically;
 use impact_chain::calibrate::{calibration_grid, calibration_point};
 use impact_model::calibration;
-use rayon::prelude::*;
+use impact_study::par_map;
 
 pub fn calibrate(a: CalibrateArgs) -> anyhow::Result<()> {
     let law = a.wall_contact;
@@ -37,10 +38,11 @@ pub fn calibrate(a: CalibrateArgs) -> anyhow::Result<()> {
         2 * a.masses
     );
     let start = std::time::Instant::now();
-    let points = grid
-        .par_iter()
-        .map(|&t| calibration_point(t, a.masses, law))
-        .collect::<Result<Vec<_>, _>>()?;
+    let points = par_map(&grid, &Bar::new("points"), |&t| {
+        calibration_point(t, a.masses, law)
+    })
+    .into_iter()
+    .collect::<Result<Vec<_>, _>>()?;
     let out = a
         .out
         .clone()

@@ -7,7 +7,7 @@ use impact_model::Bilayer;
 use impact_model::numerics::exponential_fit;
 use impact_model::rigid_bottom::{height, rigid_bottom};
 use impact_plot::{Axis, Colour, LinePlot, Series};
-use rayon::prelude::*;
+use impact_study::par_map;
 use std::path::Path;
 
 /// The composition whose bounce sequence Fig. 13 shows (many bounces).
@@ -40,16 +40,15 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
     let k = -1.0 / exponential_fit(&pts).slope;
     // e(x): model against the exact engine at small alpha
     let xs: Vec<f64> = (1..20).map(|i| f64::from(i) * 0.05).collect();
-    let compared: Vec<(f64, f64, f64)> = xs
-        .par_iter()
-        .map(|&x| {
-            let exact = exact_bilayer(Bilayer {
-                x,
-                alpha: s.appendix_alpha,
-            })?;
-            Ok((x, rigid_bottom(x).restitution, exact.restitution))
-        })
-        .collect::<Result<_, PaperError>>()?;
+    let compared: Vec<(f64, f64, f64)> = par_map(&xs, &(), |&x| {
+        let exact = exact_bilayer(Bilayer {
+            x,
+            alpha: s.appendix_alpha,
+        })?;
+        Ok((x, rigid_bottom(x).restitution, exact.restitution))
+    })
+    .into_iter()
+    .collect::<Result<_, PaperError>>()?;
     let data = csv(
         dir,
         "appendix-c",

@@ -7,7 +7,7 @@ use impact_chain::{ChainConfig, simulate};
 use impact_model::numerics::power_fit;
 use impact_model::{Layer, Scene};
 use impact_plot::{Axis, Colour, LinePlot, Series};
-use rayon::prelude::*;
+use impact_study::par_map;
 use std::path::Path;
 
 pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
@@ -17,21 +17,19 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
         wall_contact: None,
     }
     .validate()?;
-    let errors: Vec<(f64, f64)> = s
-        .fig11_sizes
-        .par_iter()
-        .map(|&n| {
-            simulate(
-                &rod,
-                &ChainConfig {
-                    masses: n,
-                    ..ChainConfig::default()
-                },
-            )
-            .map(|o| (n as f64, 1.0 - o.restitution))
-            .map_err(PaperError::from)
-        })
-        .collect::<Result<_, _>>()?;
+    let errors: Vec<(f64, f64)> = par_map(&s.fig11_sizes, &(), |&n| {
+        simulate(
+            &rod,
+            &ChainConfig {
+                masses: n,
+                ..ChainConfig::default()
+            },
+        )
+        .map(|o| (n as f64, 1.0 - o.restitution))
+        .map_err(PaperError::from)
+    })
+    .into_iter()
+    .collect::<Result<_, _>>()?;
     let fit = power_fit(&errors);
     let (p, c) = (fit.exponent, fit.prefactor());
     let at50 = errors

@@ -10,7 +10,7 @@ use impact_chain::{ChainConfig, ChainEngine, ChainRecord};
 use impact_model::WallContact;
 use impact_model::numerics::power_fit;
 use impact_plot::{Axis, Colour, LinePlot, Series};
-use rayon::prelude::*;
+use impact_study::par_map;
 use std::path::Path;
 
 /// One run: `(tau c / L, e, t_c, t_eps, wall trace)`, in units `L = c = v_b = 1`.
@@ -58,16 +58,16 @@ fn run_one(tau: f64, masses: usize, law: WallContact) -> Result<Run, PaperError>
 pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
     // the paper's wall law (Sec. III) is the model; the unilateral wall is
     // run beside it, because the sentence on e(tau c/L = 1) depends on it
-    let runs: Vec<Run> = s
-        .fig2_tau
-        .par_iter()
-        .map(|&t| run_one(t, s.fig2_masses, WallContact::Paper))
-        .collect::<Result<_, _>>()?;
-    let unilateral: Vec<Run> = s
-        .fig2_tau
-        .par_iter()
-        .map(|&t| run_one(t, s.fig2_masses, WallContact::Unilateral))
-        .collect::<Result<_, _>>()?;
+    let runs: Vec<Run> = par_map(&s.fig2_tau, &(), |&t| {
+        run_one(t, s.fig2_masses, WallContact::Paper)
+    })
+    .into_iter()
+    .collect::<Result<_, _>>()?;
+    let unilateral: Vec<Run> = par_map(&s.fig2_tau, &(), |&t| {
+        run_one(t, s.fig2_masses, WallContact::Unilateral)
+    })
+    .into_iter()
+    .collect::<Result<_, _>>()?;
     let trace = run_one(0.1, s.fig2_masses, WallContact::Paper)?;
     let data = csv(
         dir,

@@ -4,25 +4,24 @@ use crate::claim::{Claim, Item, csv, figure};
 use crate::{PaperError, Settings, exact_bilayer};
 use impact_model::{Bilayer, theory};
 use impact_plot::{Axis, Colour, LinePlot, Series};
-use rayon::prelude::*;
+use impact_study::par_map;
 use std::path::Path;
 
 pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
     let alphas = Settings::unit_steps(s.fig7_alpha_step);
     let xs = Settings::unit_steps(s.fig7_x_step);
-    let minima: Vec<(f64, f64, f64)> = alphas
-        .par_iter()
-        .map(|&a| {
-            let mut best = (f64::INFINITY, 0.0);
-            for &x in &xs {
-                let e = exact_bilayer(Bilayer { x, alpha: a })?.restitution;
-                if e < best.0 - 1e-12 {
-                    best = (e, x);
-                }
+    let minima: Vec<(f64, f64, f64)> = par_map(&alphas, &(), |&a| {
+        let mut best = (f64::INFINITY, 0.0);
+        for &x in &xs {
+            let e = exact_bilayer(Bilayer { x, alpha: a })?.restitution;
+            if e < best.0 - 1e-12 {
+                best = (e, x);
             }
-            Ok((a, best.1, best.0))
-        })
-        .collect::<Result<_, PaperError>>()?;
+        }
+        Ok((a, best.1, best.0))
+    })
+    .into_iter()
+    .collect::<Result<_, PaperError>>()?;
     let data = csv(
         dir,
         "fig7",

@@ -9,8 +9,8 @@ use crate::{PaperError, Settings};
 use impact_chain::ChainConfig;
 use impact_model::numerics::lagrange_weights;
 use impact_model::{WallContact, calibration};
+use impact_study::par_map;
 use impact_study::{LimitSettings, chain_limit};
-use rayon::prelude::*;
 
 /// Distance from the end at which Sec. VII's end values are checked.
 const END_X: f64 = 0.002;
@@ -79,12 +79,14 @@ fn end_value(e1: f64, e2: f64) -> Result<End, PaperError> {
 
 /// The Sec. VII statement against the ends of every curve of Figs. 8-9.
 pub(super) fn claim(s: &Settings) -> Result<Claim, PaperError> {
-    let ends: Vec<End> = s
+    let pairs: Vec<(f64, f64)> = s
         .visco_values
-        .par_iter()
+        .iter()
         .flat_map(|&v| [(v, 1.0), (1.0, v)])
         .filter(|&(e1, e2)| e1 < 1.0 || e2 < 1.0)
-        .map(|(e1, e2)| end_value(e1, e2))
+        .collect();
+    let ends: Vec<End> = par_map(&pairs, &(), |&(e1, e2)| end_value(e1, e2))
+        .into_iter()
         .collect::<Result<_, _>>()?;
     let bottom_ok = ends
         .iter()

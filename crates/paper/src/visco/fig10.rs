@@ -7,15 +7,16 @@ use crate::{PaperError, Settings};
 use impact_model::Outcome;
 use impact_model::numerics::spearman;
 use impact_plot::{Axis, Colour, LinePlot, Series};
-use rayon::prelude::*;
+use impact_study::par_map;
 use std::path::Path;
 
 pub fn run_10(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
     let xs = Settings::unit_steps(s.visco_x_step);
-    let curve: Vec<(f64, Outcome)> = xs
-        .par_iter()
-        .map(|&x| point(x, 0.94, 0.72, s.visco_masses).map(|o| (x, o)))
-        .collect::<Result<_, _>>()?;
+    let curve: Vec<(f64, Outcome)> = par_map(&xs, &(), |&x| {
+        point(x, 0.94, 0.72, s.visco_masses).map(|o| (x, o))
+    })
+    .into_iter()
+    .collect::<Result<_, _>>()?;
     let data = csv(
         dir,
         "fig10",

@@ -7,7 +7,7 @@ use crate::claim::{Claim, Item, csv, figure};
 use crate::{PaperError, Settings};
 use impact_model::{Bilayer, Outcome};
 use impact_plot::{Axis, Colour, LinePlot, Series};
-use rayon::prelude::*;
+use impact_study::par_map;
 use std::path::Path;
 
 /// The curves' colours, red (most viscous) to blue, then black.
@@ -48,18 +48,16 @@ pub fn run_8_9(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
     let mut regimes_ok = 0;
     let mut curves_total = 0;
     for (panel, varied_bottom) in [("a", true), ("b", false)] {
-        let curves: Vec<(f64, Vec<(f64, Outcome)>)> = s
-            .visco_values
-            .par_iter()
-            .map(|&v| {
-                let (e1, e2) = if varied_bottom { (v, 1.0) } else { (1.0, v) };
-                let curve = xs
-                    .iter()
-                    .map(|&x| point(x, e1, e2, s.visco_masses).map(|o| (x, o)))
-                    .collect::<Result<Vec<_>, _>>()?;
-                Ok((v, curve))
-            })
-            .collect::<Result<_, PaperError>>()?;
+        let curves: Vec<(f64, Vec<(f64, Outcome)>)> = par_map(&s.visco_values, &(), |&v| {
+            let (e1, e2) = if varied_bottom { (v, 1.0) } else { (1.0, v) };
+            let curve = xs
+                .iter()
+                .map(|&x| point(x, e1, e2, s.visco_masses).map(|o| (x, o)))
+                .collect::<Result<Vec<_>, _>>()?;
+            Ok((v, curve))
+        })
+        .into_iter()
+        .collect::<Result<_, PaperError>>()?;
         figures.extend(draw_panel(dir, panel, varied_bottom, &xs, &curves)?);
         for (v, curve) in &curves {
             for (x, o) in curve {
