@@ -1,12 +1,20 @@
 //! The chain's time loop: Beeman springs, implicit dashpots, unilateral wall.
+//!
+//! A viscous chain keeps Beeman's whole state (`u, v, a, a_prev`): its
+//! dashpots act on velocities. An elastic chain needs positions only (the
+//! wall impulse, the contacts and the escape decision depend on nothing
+//! else), so it runs [`VerletChain`], Beeman's positions on two arrays, and
+//! rebuilds Beeman's velocities when they are asked for.
 
 use crate::config::{ChainConfig, ChainStop};
 use crate::damping::Dashpots;
 use crate::error::ChainError;
 use crate::layout::ChainLayout;
+use crate::verlet::VerletChain;
 use impact_model::escape::{EscapeBound, Margin, internal_energy};
 use impact_model::{ContactHistory, EngineKind, Outcome, Rod, StopReason, WallContact, WallSample};
 use serde::Serialize;
+use std::borrow::Cow;
 
 /// The strain field at one time, averaged into equal-height rows (row 0 at
 /// the wall).
@@ -38,7 +46,10 @@ const INTEGRATOR_MARGIN: f64 = 0.05;
 #[derive(Debug, Clone)]
 pub struct ChainEngine {
     layout: ChainLayout,
-    /// Displacement of each mass from its undeformed height.
+    /// The elastic chain's kernel; `None` when dashpots need Beeman's state.
+    verlet: Option<VerletChain>,
+    /// Displacement of each mass from its undeformed height (Beeman's
+    /// state: empty when `verlet` runs).
     u: Vec<f64>,
     v: Vec<f64>,
     /// Spring accelerations now and one step ago (Beeman).
@@ -81,14 +92,19 @@ impl ChainEngine {
             ChainStop::Horizon { factor } => factor * rod.max_transit_time(),
             ChainStop::Escape => f64::INFINITY,
         };
+        let verlet = dashpots
+            .is_none()
+            .then(|| VerletChain::new(&layout, dt, rod.impact_speed()));
+        let beeman = if verlet.is_some() { 0 } else { n };
         Ok(Self {
+            verlet,
             inv_mass: layout.mass.iter().map(|m| 1.0 / m).collect(),
             escape: EscapeBound::new(layout.compliance_moment(), layout.mass.iter().sum()),
             total_mass: layout.mass.iter().sum(),
-            u: vec![0.0; n],
-            v: vec![-rod.impact_speed(); n],
-            a: vec![0.0; n],
-            a_prev: vec![0.0; n],
+            u: vec![0.0; beeman],
+            v: vec![-rod.impact_speed(); beeman],
+            a: vec![0.0; beeman],
+            a_prev: vec![0.0; beeman],
             dashpots,
             wall_contact: rod.wall_contact(),
             dt,
@@ -140,9 +156,24 @@ impl ChainEngine {
         &self.recording
     }
 
-    /// Displacements and velocities of the masses.
-    pub fn state(&self) -> (&[f64], &[f64]) {
-        (&self.u, &self.v)
+    /// Displacements and velocities of the masses (Beeman's; an elastic
+    /// chain rebuilds the velocities from its positions).
+    pub fn state(&self) -> (&[f64], Cow<'_, [f64]>) {
+        (self.displacement(), self.velocities())
+    }
+
+    fn displacement(&self) -> &[f64] {
+        self.verlet
+            .as_ref()
+            .map_or(self.u.as_slice(), VerletChain::displacement)
+    }
+
+    fn velocities(&self) -> Cow<'_, [f64]> {
+        self.verlet
+            .as_ref()
+            .map_or(Cow::Borrowed(self.v.as_slice()), |k| {
+                Cow::Owned(k.velocities())
+            })
     }
 
     pub fn in_contact(&self) -> bool {
@@ -166,15 +197,16 @@ impl ChainEngine {
     /// compressed).
     pub fn mechanical_energy(&self) -> f64 {
         let l = &self.layout;
+        let (u, v) = self.state();
         let kinetic: f64 = l
             .mass
             .iter()
-            .zip(&self.v)
+            .zip(v.iter())
             .map(|(m, v)| 0.5 * m * v * v)
             .sum();
-        let wall = 0.5 * l.stiffness[0] * self.u[0].min(0.0).powi(2);
+        let wall = 0.5 * l.stiffness[0] * u[0].min(0.0).powi(2);
         let springs: f64 = (1..l.len())
-            .map(|j| 0.5 * l.stiffness[j] * (self.u[j] - self.u[j - 1]).powi(2))
+            .map(|j| 0.5 * l.stiffness[j] * (u[j] - u[j - 1]).powi(2))
             .sum();
         kinetic + wall + springs
     }
@@ -184,7 +216,7 @@ impl ChainEngine {
         self.layout
             .mass
             .iter()
-            .zip(&self.v)
+            .zip(self.velocities().iter())
             .map(|(m, v)| m * v)
             .sum::<f64>()
             / self.total_mass
@@ -194,7 +226,7 @@ impl ChainEngine {
         self.layout
             .mass
             .iter()
-            .zip(&self.u)
+            .zip(self.displacement())
             .map(|(m, u)| m * u)
             .sum::<f64>()
             / self.total_mass
@@ -210,8 +242,41 @@ impl ChainEngine {
     /// [`Self::run`] would). Stepping on after a stop is allowed.
     pub fn step(&mut self) -> Result<Option<StopReason>, ChainError> {
         let dt = self.dt;
-        let mut wall_impulse = 0.0;
-        let u0_old = self.u[0];
+        let u0_old = self.displacement()[0];
+        let (force, wall_impulse) = match &mut self.verlet {
+            Some(kernel) => {
+                kernel.step();
+                (
+                    -self.layout.stiffness[0] * kernel.displacement()[0].min(0.0),
+                    0.0,
+                )
+            }
+            None => self.beeman_step(u0_old),
+        };
+        self.impulse += 0.5 * dt * (self.wall_force + force) + wall_impulse;
+        self.wall_force = force;
+        self.t += dt;
+        self.steps += 1;
+        self.track_contact(u0_old);
+        self.record();
+        if self.steps.is_multiple_of(1024) && !self.displacement()[0].is_finite() {
+            let mass = self
+                .displacement()
+                .iter()
+                .position(|u| !u.is_finite())
+                .unwrap_or(0);
+            return Err(ChainError::NonFinite { time: self.t, mass });
+        }
+        if self.stopped.is_none() {
+            self.stopped = self.stop_now();
+        }
+        Ok(self.stopped)
+    }
+
+    /// One Beeman step of the springs, then the dashpots; returns the wall
+    /// spring's force at the new positions and the dashpots' wall impulse.
+    fn beeman_step(&mut self, u0_old: f64) -> (f64, f64) {
+        let dt = self.dt;
         beeman_positions(&mut self.u, &self.v, &self.a, &self.a_prev, dt);
         let force = self.spring_wall_force(self.u[0]);
         let spring_impulse = 0.5 * dt * (self.wall_force + force);
@@ -225,6 +290,7 @@ impl ChainEngine {
             inv_m,
             dt,
         );
+        let mut wall_impulse = 0.0;
         if let Some(d) = &mut self.dashpots {
             wall_impulse += d.step(
                 &self.layout.mass,
@@ -234,20 +300,7 @@ impl ChainEngine {
                 self.wall_contact,
             );
         }
-        self.impulse += spring_impulse + wall_impulse;
-        self.wall_force = force;
-        self.t += dt;
-        self.steps += 1;
-        self.track_contact(u0_old);
-        self.record();
-        if self.steps.is_multiple_of(1024) && !(self.u[0].is_finite() && self.v[0].is_finite()) {
-            let mass = self.v.iter().position(|v| !v.is_finite()).unwrap_or(0);
-            return Err(ChainError::NonFinite { time: self.t, mass });
-        }
-        if self.stopped.is_none() {
-            self.stopped = self.stop_now();
-        }
-        Ok(self.stopped)
+        (force, wall_impulse)
     }
 
     /// The stop rules after a step: the horizon, the escape bound, rest.
@@ -269,7 +322,7 @@ impl ChainEngine {
     /// Detects wall-spring crossings of zero, timed by linear interpolation
     /// within the step.
     fn track_contact(&mut self, u0_old: f64) {
-        let u0 = self.u[0];
+        let u0 = self.displacement()[0];
         let was = self.history.in_contact();
         let now = u0 < 0.0;
         if was == now {
@@ -310,12 +363,16 @@ impl ChainEngine {
         if let Some(every) = rec.wall_every
             && self.steps.is_multiple_of(every.max(1))
         {
-            let u0 = self.u[0];
+            let u0 = self.displacement()[0];
+            let velocity = self
+                .verlet
+                .as_ref()
+                .map_or_else(|| self.v[0], |k| k.velocity(0));
             self.recording.wall.push(WallSample {
                 time: self.t,
                 strain: u0.min(0.0) / self.layout.rest_length[0],
                 height: u0.max(0.0),
-                velocity: self.v[0],
+                velocity,
             });
         }
         if let Some((every, rows)) = rec.raster
@@ -329,15 +386,16 @@ impl ChainEngine {
     /// The strain field averaged into `rows` equal-height rows.
     pub fn raster(&self, rows: usize) -> RasterFrame {
         let l = &self.layout;
+        let u = self.displacement();
         let total = l.height.last().copied().unwrap_or(1.0);
         let mut sum = vec![0.0; rows];
         let mut weight = vec![0.0; rows];
         for j in 0..l.len() {
             // the wall element is strained only while compressed
             let stretch = if j == 0 {
-                self.u[0].min(0.0)
+                u[0].min(0.0)
             } else {
-                self.u[j] - self.u[j - 1]
+                u[j] - u[j - 1]
             };
             let strain = stretch / l.rest_length[j];
             let centre = l.height[j] - 0.5 * l.rest_length[j];
