@@ -11,20 +11,19 @@ use impact_study::par_map;
 pub fn calibrate(a: CalibrateArgs) -> anyhow::Result<()> {
     let law = a.wall_contact;
     let (lowest, widest) = calibration::range(law);
+    let outside = |flag: &str, range: String, got: f64| {
+        input(format!(
+            "--{flag} must be a number in {range} (the calibrated range; got {got})"
+        ))
+    };
     if let Some(e) = a.restitution {
-        let t = calibration::tau_c_over_l(law, e).ok_or_else(|| {
-            input(format!(
-                "--restitution must be a number in [{lowest:.4}, 1] (the calibrated range; got {e})"
-            ))
-        })?;
+        let t = calibration::tau_c_over_l(law, e)
+            .ok_or_else(|| outside("restitution", format!("[{lowest:.4}, 1]"), e))?;
         return print(&a, "restitution", e, "tau_c_over_l", t);
     }
     if let Some(t) = a.tau_c_over_l {
-        let e = calibration::restitution(law, t).ok_or_else(|| {
-            input(format!(
-                "--tau-c-over-l must be a number in [0, {widest}] (the calibrated range; got {t})"
-            ))
-        })?;
+        let e = calibration::restitution(law, t)
+            .ok_or_else(|| outside("tau-c-over-l", format!("[0, {widest}]"), t))?;
         return print(&a, "tau_c_over_l", t, "restitution", e);
     }
     if a.masses < 2 {

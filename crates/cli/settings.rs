@@ -16,20 +16,22 @@ use impact_wave::{Precision, Record, Resolution, StopRule, WaveConfig};
 impl EngineArgs {
     /// The exact engine with validated settings, whatever `--engine` says.
     pub fn wave_engine(&self, record: Record) -> anyhow::Result<Engine> {
-        let copy = EngineArgs {
-            engine: EngineChoice::Wave,
-            ..self.clone()
-        };
-        copy.engine(false, 2, record, ChainRecord::default())
+        self.forced(EngineChoice::Wave)
+            .engine(false, 2, record, ChainRecord::default())
     }
 
     /// The chain of `masses` with validated settings, whatever `--engine` says.
     pub fn chain_engine(&self, masses: usize, record: ChainRecord) -> anyhow::Result<Engine> {
-        let copy = EngineArgs {
-            engine: EngineChoice::Chain,
+        self.forced(EngineChoice::Chain)
+            .engine(false, masses, Record::default(), record)
+    }
+
+    /// These settings with the engine chosen.
+    fn forced(&self, engine: EngineChoice) -> EngineArgs {
+        EngineArgs {
+            engine,
             ..self.clone()
-        };
-        copy.engine(false, masses, Record::default(), record)
+        }
     }
 
     /// The engine to run for a scene (`viscous`: any layer dissipates), with

@@ -13,23 +13,9 @@ fn a_second_writer_on_a_shard_is_refused_and_the_journal_stays_intact() {
     let grid = "sweep --x 0.05:0.95:0.05 --alpha 0.2:0.8:0.2 --engine chain --n 600 --no-timing";
     let mut args: Vec<&str> = grid.split(' ').collect();
     args.extend(["--threads", "1", "--shard", "1/1", "--resume", "--out", j]);
-    let mut first = std::process::Command::new(env!("CARGO_BIN_EXE_impact"))
-        .args(&args)
-        .stderr(std::process::Stdio::null())
-        .spawn()
-        .unwrap();
-    let start = std::time::Instant::now();
-    while std::fs::read_to_string(&journal).map_or(0, |t| t.lines().count()) < 3
-        && start.elapsed().as_secs() < 60
-    {
-        std::thread::sleep(std::time::Duration::from_millis(5));
-    }
+    let mut first = start_until_lines(&args, &journal, 3);
+    // (were the first done already, the second would succeed: a failure here)
     let second = impact(&args);
-    let running = first.try_wait().unwrap().is_none();
-    assert!(
-        running,
-        "the first writer finished early: nothing was tested"
-    );
     assert_eq!(second.status.code(), Some(2), "{}", stderr(&second));
     let err = stderr(&second);
     assert!(

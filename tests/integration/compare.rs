@@ -289,17 +289,7 @@ fn a_real_kill_mid_run_resumes_cleanly() {
     let mut args = vec!["sweep"];
     args.extend(grid.split_whitespace());
     args.extend(["--out", journal.to_str().unwrap(), "--shard", "1/1"]);
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_impact"))
-        .args(&args)
-        .stderr(std::process::Stdio::null())
-        .spawn()
-        .unwrap();
-    let start = std::time::Instant::now();
-    while std::fs::read_to_string(&journal).map_or(0, |t| t.lines().count()) < 6
-        && start.elapsed().as_secs() < 60
-    {
-        std::thread::sleep(std::time::Duration::from_millis(5));
-    }
+    let mut child = start_until_lines(&args, &journal, 6);
     child.kill().unwrap();
     child.wait().unwrap();
     let before = std::fs::read_to_string(&journal).unwrap().lines().count() - 1;

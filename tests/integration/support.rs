@@ -70,3 +70,20 @@ pub fn assert_input_error(args: &[&str], needle: &str) {
     assert!(err.contains(needle), "{args:?}: '{needle}' not in {err}");
     assert!(!err.contains("panicked") && !err.contains("backtrace"));
 }
+
+/// Starts the binary with `args` in the background and returns once `file`
+/// has at least `lines` lines (or after 60 s): a run caught in the middle.
+pub fn start_until_lines(args: &[&str], file: &Path, lines: usize) -> std::process::Child {
+    let child = Command::new(env!("CARGO_BIN_EXE_impact"))
+        .args(args)
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .expect("the impact binary starts");
+    let start = std::time::Instant::now();
+    while std::fs::read_to_string(file).map_or(0, |t| t.lines().count()) < lines
+        && start.elapsed().as_secs() < 60
+    {
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    child
+}

@@ -1,7 +1,6 @@
 mod common;
 use common::*;
 use impact_chain::{ChainError, ChainLayout};
-use impact_model::{Layer, Scene};
 
 #[test]
 fn masses_follow_lengths_with_at_least_one_per_layer() {
@@ -19,16 +18,7 @@ fn masses_follow_lengths_with_at_least_one_per_layer() {
 
 #[test]
 fn the_chain_has_the_rods_mass_and_length() {
-    let scene = Scene {
-        impact_speed: 1.0,
-        layers: vec![
-            Layer::elastic(0.3, 5.0, 2.0),
-            Layer::elastic(0.5, 0.2, 0.5),
-            Layer::elastic(0.2, 1.5, 7.0),
-        ],
-        wall_contact: None,
-    };
-    let rod = scene.validate().unwrap();
+    let rod = elastic_stack(1.0, &[(0.3, 5.0, 2.0), (0.5, 0.2, 0.5), (0.2, 1.5, 7.0)]);
     let l = ChainLayout::new(&rod, 997).unwrap();
     assert!((l.mass.iter().sum::<f64>() - rod.mass()).abs() < 1e-12);
     assert!((l.height.last().unwrap() - rod.total_length()).abs() < 1e-12);

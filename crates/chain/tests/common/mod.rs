@@ -58,3 +58,18 @@ pub fn log_slope(points: &[(f64, f64)]) -> f64 {
     assert!(points.iter().all(|p| p.0 > 0.0 && p.1 > 0.0), "{points:?}");
     impact_model::numerics::power_fit(points).exponent
 }
+
+/// A stack of elastic layers `(length, modulus, density)`, bottom first,
+/// hitting the wall at `speed`.
+pub fn elastic_stack(speed: f64, layers: &[(f64, f64, f64)]) -> Rod {
+    Scene {
+        impact_speed: speed,
+        layers: layers
+            .iter()
+            .map(|&(l, e, rho)| Layer::elastic(l, e, rho))
+            .collect(),
+        wall_contact: None,
+    }
+    .validate()
+    .unwrap()
+}
