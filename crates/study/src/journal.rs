@@ -152,6 +152,24 @@ pub struct JournalHeader {
 }
 
 impl JournalHeader {
+    /// `Ok` when `other` was written by the same run (and, with
+    /// `same_shard`, the same shard of it); else the first thing that
+    /// differs, as a user would name it.
+    fn same_run(&self, other: &JournalHeader, same_shard: bool) -> Result<(), &'static str> {
+        let version = |h: &JournalHeader| h.settings.get("version").cloned();
+        let checks = [
+            ("command", self.command == other.command),
+            ("the tool's version", version(self) == version(other)),
+            ("settings", self.settings == other.settings),
+            ("grid size", self.points == other.points),
+            ("shard", !same_shard || self.shard == other.shard),
+        ];
+        match checks.iter().find(|(_, same)| !same) {
+            Some((what, _)) => Err(what),
+            None => Ok(()),
+        }
+    }
+
     pub fn new(command: &str, settings: serde_json::Value, points: usize, shard: Shard) -> Self {
         Self {
             journal: "impact-journal/2".into(),
@@ -257,23 +275,12 @@ impl Journal {
         let mut entries = BTreeMap::new();
         if started && resume {
             let (found, done, good_len) = parse_entries::<T>(path, &text)?;
-            for (what, same) in [
-                ("command", found.command == header.command),
-                (
-                    "the tool's version",
-                    found.settings.get("version") == header.settings.get("version"),
-                ),
-                ("settings", found.settings == header.settings),
-                ("grid size", found.points == header.points),
-                ("shard", found.shard == header.shard),
-            ] {
-                if !same {
-                    return Err(JournalError::Mismatch {
-                        path: path.to_path_buf(),
-                        what,
-                    });
-                }
-            }
+            found
+                .same_run(header, true)
+                .map_err(|what| JournalError::Mismatch {
+                    path: path.to_path_buf(),
+                    what,
+                })?;
             file.set_len(good_len).map_err(io(path))?;
             entries = done;
         } else {
@@ -350,22 +357,12 @@ pub fn merge<T: DeserializeOwned + PartialEq>(
         }
         seen.push((path.clone(), canonical, h.shard));
         if let Some(first) = &header {
-            for (what, same) in [
-                ("command", first.command == h.command),
-                (
-                    "the tool's version",
-                    first.settings.get("version") == h.settings.get("version"),
-                ),
-                ("settings", first.settings == h.settings),
-                ("grid size", first.points == h.points),
-            ] {
-                if !same {
-                    return Err(JournalError::Mismatch {
-                        path: path.clone(),
-                        what,
-                    });
-                }
-            }
+            first
+                .same_run(&h, false)
+                .map_err(|what| JournalError::Mismatch {
+                    path: path.clone(),
+                    what,
+                })?;
         } else {
             header = Some(h);
         }
