@@ -45,48 +45,43 @@ impl EngineArgs {
         wave_record: Record,
         chain_record: ChainRecord,
     ) -> anyhow::Result<Engine> {
-        let engine = self.unchecked_engine(viscous, masses, wave_record, chain_record)?;
-        engine.check().map_err(crate::flags::setting)?;
-        Ok(engine)
-    }
-
-    fn unchecked_engine(
-        &self,
-        viscous: bool,
-        masses: usize,
-        wave_record: Record,
-        chain_record: ChainRecord,
-    ) -> anyhow::Result<Engine> {
         let horizon = self.horizon;
-        match (self.engine, viscous) {
-            (EngineChoice::Wave, true) => Err(input(
-                "--engine wave: the scene has a viscous layer, and the exact engine handles elastic layers only (use --engine chain or auto)",
-            )),
+        let engine = match (self.engine, viscous) {
+            (EngineChoice::Wave, true) => {
+                return Err(input(
+                    "--engine wave: the scene has a viscous layer, and the exact engine handles elastic layers only (use --engine chain or auto)",
+                ));
+            }
             (EngineChoice::Wave, false) | (EngineChoice::Auto, false) => {
                 let mut config = self.wave.config(wave_record)?;
                 if let Some(factor) = horizon {
                     config.stop = StopRule::Horizon { factor };
                 }
-                Ok(Engine::Wave(config))
+                Engine::Wave(config)
             }
-            (EngineChoice::RigidBottom, true) => Err(input(
-                "--engine rigid-bottom: the scene has a viscous layer, and the rigid-bottom model handles elastic layers only (use --engine chain or auto)",
-            )),
-            (EngineChoice::RigidBottom, false) => Ok(Engine::RigidBottom(RigidConfig {
+            (EngineChoice::RigidBottom, true) => {
+                return Err(input(
+                    "--engine rigid-bottom: the scene has a viscous layer, and the rigid-bottom model handles elastic layers only (use --engine chain or auto)",
+                ));
+            }
+            (EngineChoice::RigidBottom, false) => Engine::RigidBottom(RigidConfig {
                 stop: horizon.map_or(RigidStop::Escape, |factor| RigidStop::Horizon { factor }),
                 ..RigidConfig::default()
-            })),
+            }),
             (EngineChoice::Chain, _) | (EngineChoice::Auto, true) => {
                 let c = &self.chain;
-                Ok(Engine::Chain(ChainConfig {
+                Engine::Chain(ChainConfig {
                     masses,
                     dt_factor: c.dt_factor,
                     stop: horizon.map_or(ChainStop::Escape, |factor| ChainStop::Horizon { factor }),
                     max_steps: c.max_steps,
                     record: chain_record,
-                }))
+                })
             }
-        }
+        };
+        // the engine's own ranges, checked before any work starts
+        engine.check().map_err(crate::flags::setting)?;
+        Ok(engine)
     }
 }
 
