@@ -26,6 +26,7 @@ const SAFETY_UNCLEAR: f64 = 3.0;
 pub struct Extrapolation {
     /// The sizes (ascending) and the values computed at them.
     pub sizes: Vec<usize>,
+    /// The value at each size, in the order of `sizes`.
     pub values: Vec<f64>,
     /// Observed order `p` of `|e(N) - e_inf| ~ N^-p` from the last three
     /// sizes, when their changes are monotone.
