@@ -62,7 +62,7 @@ pub struct CostSettings {
     pub drop_tolerances: Vec<f64>,
     /// Exact-engine merge windows (0 is always added).
     pub merge_windows: Vec<f64>,
-    /// Headline: the error to reach, and the largest N tried.
+    /// Headline: the error in `e` to reach.
     pub target_error: f64,
     /// The largest `N` the headline tries.
     pub max_masses: usize,

@@ -24,7 +24,7 @@ const SAFETY_UNCLEAR: f64 = 3.0;
 /// The extrapolated value of a sequence and how far it may be off.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Extrapolation {
-    /// The sizes (ascending) and the values computed at them.
+    /// The sizes (ascending).
     pub sizes: Vec<usize>,
     /// The value at each size, in the order of `sizes`.
     pub values: Vec<f64>,
