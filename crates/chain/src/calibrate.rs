@@ -9,6 +9,7 @@ use impact_model::{Allowed, Layer, Rod, Scene, SettingError, WallContact};
 /// first-order convergence in `N` measured for viscous rods.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CalibrationPoint {
+    /// Reduced relaxation time `tau c / L` of the homogeneous rod.
     pub tau_c_over_l: f64,
     /// Extrapolated restitution (exactly 1 for the elastic rod, `t = 0`).
     pub restitution: f64,

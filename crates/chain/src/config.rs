@@ -11,10 +11,14 @@ pub enum ChainStop {
     /// integrator's energy fluctuation).
     Escape,
     /// At `factor * max(t_i)`; the paper uses 20.
-    Horizon { factor: f64 },
+    Horizon {
+        /// The multiple of the longest transit time `max(t_i)` at which to stop.
+        factor: f64,
+    },
 }
 
 impl ChainStop {
+    /// The paper's stop: `20 max(t_i)`, whether or not the rod has left.
     pub const PAPER: ChainStop = ChainStop::Horizon { factor: 20.0 };
 }
 
@@ -37,9 +41,11 @@ pub struct ChainConfig {
     /// Default 1: the paper's step (`omega dt = 0.063`, far inside Beeman's
     /// elastic stability limit; dashpots are implicit, so they impose none).
     pub dt_factor: f64,
+    /// When the run ends. Default: the escape bound.
     pub stop: ChainStop,
     /// Refuse to take more steps than this.
     pub max_steps: u64,
+    /// What to record besides the outcome.
     pub record: ChainRecord,
 }
 

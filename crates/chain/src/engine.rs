@@ -20,7 +20,9 @@ use std::borrow::Cow;
 /// the wall).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct RasterFrame {
+    /// Time of the frame, in the scene's units.
     pub time: f64,
+    /// Mean strain of each row, bottom first (negative in compression).
     pub strain: Vec<f64>,
 }
 
@@ -29,6 +31,7 @@ pub struct RasterFrame {
 pub struct ChainRecording {
     /// Wall samples (the same type as the exact engine's).
     pub wall: Vec<WallSample>,
+    /// Strain frames for space-time diagrams.
     pub raster: Vec<RasterFrame>,
 }
 
@@ -80,6 +83,8 @@ pub struct ChainEngine {
 }
 
 impl ChainEngine {
+    /// Lays the rod out on `config.masses` masses, at rest and moving down at
+    /// `v_b`, just touching the wall at `t = 0`; refuses settings out of range.
     pub fn new(rod: &Rod, config: ChainConfig) -> Result<Self, ChainError> {
         config.check()?;
         let layout = ChainLayout::new(rod, config.masses)?;
@@ -132,26 +137,32 @@ impl ChainEngine {
         self.dashpots.is_some()
     }
 
+    /// How the rod was mapped onto masses.
     pub fn layout(&self) -> &ChainLayout {
         &self.layout
     }
 
+    /// Current time, in the scene's units.
     pub fn time(&self) -> f64 {
         self.t
     }
 
+    /// The time step `dt`, in the scene's units.
     pub fn time_step(&self) -> f64 {
         self.dt
     }
 
+    /// Steps taken so far.
     pub fn steps(&self) -> u64 {
         self.steps
     }
 
+    /// Why the run stopped, once it has.
     pub fn stopped(&self) -> Option<StopReason> {
         self.stopped
     }
 
+    /// What was recorded (empty unless asked in the config).
     pub fn recording(&self) -> &ChainRecording {
         &self.recording
     }
@@ -176,6 +187,7 @@ impl ChainEngine {
             })
     }
 
+    /// Whether the bottom mass touches the wall now (its element compressed).
     pub fn in_contact(&self) -> bool {
         self.history.in_contact()
     }

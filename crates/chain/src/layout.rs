@@ -80,14 +80,17 @@ impl ChainLayout {
         Ok(layout)
     }
 
+    /// Number of masses `N`.
     pub fn len(&self) -> usize {
         self.mass.len()
     }
 
+    /// Whether there are no masses (never, for a layout built by [`ChainLayout::new`]).
     pub fn is_empty(&self) -> bool {
         self.mass.is_empty()
     }
 
+    /// Whether any element has a dashpot (a viscous layer).
     pub fn is_viscous(&self) -> bool {
         self.viscosity.iter().any(|&c| c > 0.0)
     }

@@ -10,6 +10,8 @@
 //! Architecture invariant: this crate knows nothing about the exact engine,
 //! output formats, plotting or the command line.
 
+#![warn(missing_docs)]
+
 pub mod calibrate;
 mod config;
 mod damping;

@@ -11,7 +11,9 @@ use std::time::Instant;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ChainKind {
+    /// The elastic point itself: errors against the exact engine.
     Elastic,
+    /// The same rod with a viscous top: errors against the chain's own limit.
     Viscous,
 }
 
@@ -40,15 +42,22 @@ pub enum ChainStudy {
 /// One setting of the chain at one point.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ChainCost {
+    /// Elastic point or viscous variant.
     pub kind: ChainKind,
+    /// Which setting the row varied.
     pub study: ChainStudy,
+    /// Number of masses `N`.
     pub masses: usize,
+    /// Time step as a fraction of the paper's.
     pub dt_factor: f64,
+    /// The chain's `e` at this setting.
     pub restitution: f64,
     /// Against the exact engine (elastic) or the chain's Richardson limit
     /// (viscous).
     pub restitution_error: f64,
+    /// Wall time of the run(s), in seconds.
     pub seconds: f64,
+    /// Time steps taken.
     pub steps: u64,
     /// `steps * N`: the hardware-independent work.
     pub mass_steps: f64,
@@ -163,18 +172,24 @@ fn extrapolated(
 /// within `target` of the exact `e`, its time, and the exact engine's time.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Headline {
+    /// The error in `e` to reach.
     pub target_error: f64,
     /// `None` when `max_masses` was not enough.
     pub masses: Option<usize>,
     /// The largest N tried.
     pub masses_tried: usize,
+    /// Wall time of the chain's last run, in seconds.
     pub chain_seconds: f64,
+    /// `|e - e_exact|` of the chain's last run.
     pub chain_error: f64,
+    /// Wall time of the exact engine on the same rod, in seconds.
     pub exact_seconds: f64,
     /// Chain time over exact time.
     pub ratio: f64,
 }
 
+/// Doubles `N` from 100 until the chain's `e` is within `s.target_error` of
+/// the exact engine's or `N` would pass `s.max_masses`.
 pub fn headline(rod: &Rod, s: &CostSettings) -> Result<Headline, CostError> {
     let (exact_seconds, exact) = exact_reference(rod)?;
     let mut n = 100;

@@ -8,13 +8,19 @@ use serde::Serialize;
 /// One setting of the exact engine at one point.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ExactCost {
+    /// Label of the rod (the point of the study).
     pub point: String,
+    /// Drop tolerance (fronts under `drop_tolerance * v_b` in velocity are dropped).
     pub drop_tolerance: f64,
+    /// Merge window, as a fraction of the lane's transit time and of the longest one; 0: exact.
     pub merge_window: f64,
     /// `|e - e_ref|`, `|t_c - t_c,ref|` against drop 0, merge 0.
     pub restitution_error: f64,
+    /// `|t_c - t_c,ref|`.
     pub contact_time_error: f64,
+    /// Boundary events processed.
     pub events: u64,
+    /// Wall time of the run, in seconds.
     pub seconds: f64,
 }
 

@@ -18,11 +18,17 @@ pub enum GrowthSweep {
 /// Exact-engine work at one bilayer.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Growth {
+    /// Which parameter this point varies.
     pub sweep: GrowthSweep,
+    /// Composition `x = L2 / L`.
     pub x: f64,
+    /// Stiffness ratio `alpha = E2 / (E1 + E2)`.
     pub alpha: f64,
+    /// Transit-time ratio `t2 / t1`: how many round trips the bottom rings per top transit.
     pub transit_ratio: f64,
+    /// Boundary events of the exact run.
     pub events: u64,
+    /// Wall time of the run, in seconds.
     pub seconds: f64,
 }
 

@@ -5,6 +5,8 @@
 //!
 //! Timings are measurements, reported, never asserted.
 
+#![warn(missing_docs)]
+
 mod chain;
 mod exact;
 mod growth;
@@ -19,20 +21,30 @@ use impact_model::Rod;
 use std::time::Instant;
 use thiserror::Error;
 
+/// Why a cost study could not run.
 #[derive(Debug, Error)]
 pub enum CostError {
+    /// A viscous layer: the study needs an elastic scene, whose exact solution is the reference.
     #[error(
         "layers[{layer}] is viscous: the cost study needs an elastic scene, whose exact solution is the reference (the viscous study is made from it)"
     )]
-    ViscousScene { layer: usize },
+    ViscousScene {
+        /// Index of the first viscous layer, bottom first.
+        layer: usize,
+    },
+    /// The scene was invalid.
     #[error(transparent)]
     Scene(#[from] impact_model::SceneError),
+    /// The exact engine failed.
     #[error(transparent)]
     Wave(#[from] impact_wave::WaveError),
+    /// The chain failed.
     #[error(transparent)]
     Chain(#[from] impact_chain::ChainError),
+    /// A figure could not be written.
     #[error(transparent)]
     Plot(#[from] impact_plot::PlotError),
+    /// A report file could not be written.
     #[error(transparent)]
     Io(#[from] std::io::Error),
 }
@@ -50,8 +62,9 @@ pub struct CostSettings {
     pub drop_tolerances: Vec<f64>,
     /// Exact-engine merge windows (0 is always added).
     pub merge_windows: Vec<f64>,
-    /// Headline: the error to reach, and the largest N tried.
+    /// Headline: the error in `e` to reach.
     pub target_error: f64,
+    /// The largest `N` the headline tries.
     pub max_masses: usize,
     /// Layer restitution of the top for the viscous chain study.
     pub viscous_e2: f64,

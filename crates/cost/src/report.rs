@@ -14,22 +14,32 @@ use std::path::Path;
 /// Everything a cost study measured.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CostReport {
+    /// Label of the rod studied.
     pub point: String,
+    /// The exact engine's `e` for it: the elastic reference.
     pub exact_e: f64,
+    /// The exact engine's settings and what each cost.
     pub exact: Vec<ExactCost>,
+    /// The chain's settings and what each cost, elastic and viscous.
     pub chain: Vec<ChainCost>,
+    /// The viscous chain's own limit `e`, the viscous reference: Richardson in
+    /// `N` from the three largest sizes when they converge monotonically.
     pub viscous_limit: f64,
+    /// Exact-engine work along `x` and `alpha`.
     pub growth: Vec<Growth>,
+    /// The chain's cost to reach the target error, against the exact engine's.
     pub headline: Headline,
     /// Exponent of chain time against N (expected ~2: N masses times N-long
-    /// runs) and of mass-steps against N.
+    /// runs).
     pub chain_time_exponent: f64,
+    /// Exponent of mass-steps against N.
     pub chain_work_exponent: f64,
     /// The Pareto front over both engines `(seconds, error, label)`, time
     /// increasing (usually the exact engine alone: fastest and most exact).
     pub pareto: Vec<(f64, f64, String)>,
-    /// Each engine's own front: what its settings trade.
+    /// The exact engine's own front: what its settings trade.
     pub pareto_exact: Vec<(f64, f64, String)>,
+    /// The chain's own front: what `N` and the time step trade.
     pub pareto_chain: Vec<(f64, f64, String)>,
 }
 

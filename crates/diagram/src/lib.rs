@@ -9,6 +9,8 @@
 //! of the up- and down-going characteristics, so it is constant on
 //! parallelograms whose corners are front crossings ([`ExactField`]).
 
+#![warn(missing_docs)]
+
 mod field;
 mod figure;
 mod html;

@@ -11,7 +11,9 @@ use impact_wave::{Record, WaveConfig, WaveEngine, WaveError};
 /// A picture with the run it came from.
 #[derive(Debug, Clone)]
 pub struct Run {
+    /// What to draw.
     pub picture: Picture,
+    /// The run's outcome.
     pub outcome: Outcome,
     /// `(time, wall strain)` after each wall event or sample.
     pub wall: Vec<(f64, f64)>,

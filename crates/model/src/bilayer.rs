@@ -10,7 +10,9 @@ use crate::scene::{Layer, Scene, SceneError, check};
 /// not depend on these choices, and times scale with `L`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Bilayer {
+    /// Composition `x = L2 / L`: the top layer's share of the rod's length, in `(0, 1)`.
     pub x: f64,
+    /// Stiffness ratio `alpha = E2 / (E1 + E2)`, in `(0, 1)`: small means a soft top on a stiff bottom.
     pub alpha: f64,
 }
 

@@ -17,8 +17,10 @@ use std::sync::OnceLock;
 /// One line of a calibration table; the field names are the CSV header.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct TableEntry {
+    /// Reduced relaxation time `tau c / L` of the homogeneous Kelvin-Voigt rod.
     #[serde(serialize_with = "shortest")]
     pub tau_c_over_l: f64,
+    /// Its restitution `e`, extrapolated to the continuum (`N -> infinity`).
     #[serde(serialize_with = "shortest")]
     pub restitution: f64,
     /// The size of the Richardson correction: an estimate of the error left.

@@ -23,6 +23,7 @@ impl ContactHistory {
         }
     }
 
+    /// Whether the rod touches the wall now (a contact interval is open).
     pub fn in_contact(&self) -> bool {
         self.open_since.is_some()
     }

@@ -27,6 +27,7 @@ pub trait Arithmetic:
 {
     /// From a double (exact).
     fn of(x: f64) -> Self;
+    /// Square root, to this arithmetic's precision.
     fn sqrt(self) -> Self;
 }
 
@@ -53,7 +54,9 @@ fn at_least_zero<T: Arithmetic>(x: T) -> T {
 /// the reason.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Margin<T> {
+    /// Fraction of `D` added (for an energy balance the engine knows only approximately).
     pub relative: f64,
+    /// Length added to `D`, in the units of the bound (rounding that grows with the run).
     pub absolute: T,
 }
 

@@ -14,6 +14,8 @@
 //! Conventions (see `shared/DESIGN.md` §1): `y` points up from the wall, layer 0
 //! touches the wall, unit cross-section, strain is positive in tension.
 
+#![warn(missing_docs)]
+
 pub mod bilayer;
 pub mod calibration;
 pub mod contact;

@@ -101,6 +101,7 @@ impl ErrorEstimate {
 /// row, the command line's summary), so two runs of one point compare equal.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Outcome {
+    /// Which engine produced this outcome.
     pub engine: EngineKind,
     /// The wall's contact law the run used (the same physics for elastic
     /// rods, where no dashpot acts).
@@ -126,6 +127,7 @@ pub struct Outcome {
     pub contacts: Vec<[f64; 2]>,
     /// One-way transit time of each layer, bottom first.
     pub transit_times: Vec<f64>,
+    /// Why the run stopped: whether `t_c` and `e` are final.
     pub stop_reason: StopReason,
     /// Time at which the run stopped.
     pub end_time: f64,
@@ -152,10 +154,6 @@ pub struct Outcome {
 }
 
 impl Outcome {
-    /// An outcome with the contact figures derived from `history` at time
-    /// `end`: `t_c`, its reduced form, `n1` (two-layer rods), the paper's
-    /// filtered `N_b` (flights longer than `min(t_i)`) and the raw count. The
-    /// engine adds its own work counters.
     /// Attaches an error estimate (and its bound).
     pub fn with_error(mut self, estimate: ErrorEstimate) -> Self {
         let estimate = estimate.total();
@@ -164,6 +162,10 @@ impl Outcome {
         self
     }
 
+    /// An outcome with the contact figures derived from `history` at time
+    /// `end_time`: `t_c`, its reduced form, `n1` (two-layer rods), the paper's
+    /// filtered `N_b` (flights longer than `min(t_i)`) and the raw count. The
+    /// engine adds its own work counters.
     pub fn from_history(
         engine: EngineKind,
         restitution: f64,

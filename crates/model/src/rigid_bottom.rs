@@ -16,13 +16,16 @@
 /// upward speed `speed`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Bounce {
+    /// Time the rigid part leaves the wall, in units of `tau`.
     pub time: f64,
+    /// Its upward speed then, in units of `v_b`.
     pub speed: f64,
 }
 
 /// The recursion's result, in units of `tau` (time) and `v_b` (speed).
 #[derive(Debug, Clone, PartialEq)]
 pub struct RigidBottom {
+    /// Composition `x = L2 / L` the recursion ran for.
     pub x: f64,
     /// `t2 / tau = x / (1 - x)`: the model stops at `t_c = 2 t2`.
     pub takeoff_time: f64,
@@ -31,9 +34,11 @@ pub struct RigidBottom {
     /// Time from which the rigid part rests on the wall (bounces too small
     /// to follow, under `1e-12 v_b`), if before `t_c`.
     pub rests_from: Option<f64>,
-    /// `v1(t_c)`, `v2(t_c)` and `e`.
+    /// `v1(t_c)`: the rigid part's velocity at takeoff, in units of `v_b`.
     pub v1: f64,
+    /// `v2(t_c)`: the elastic top's mean velocity at takeoff (Eq. C3), in units of `v_b`.
     pub v2: f64,
+    /// `e = (1 - x) v1(t_c) + x v2(t_c)`: the centre of mass's final speed over `v_b`.
     pub restitution: f64,
 }
 

@@ -146,8 +146,11 @@ pub enum SceneError {
     /// A number outside its allowed range (NaN and infinities included).
     #[error("{field} must be {allowed} (got {value})")]
     OutOfRange {
+        /// The offending field, as written in the scene (`layers[1].modulus`).
         field: String,
+        /// The allowed range, in words.
         allowed: &'static str,
+        /// The value the scene gave.
         value: f64,
     },
     /// A scene with no layer.
@@ -155,13 +158,20 @@ pub enum SceneError {
     NoLayers,
     /// Both ways of giving viscosity at once.
     #[error("layers[{index}] gives both relaxation_time and restitution: give at most one")]
-    ConflictingViscosity { index: usize },
+    ConflictingViscosity {
+        /// Index of the layer, bottom first.
+        index: usize,
+    },
     /// A derived quantity that double precision cannot hold.
     #[error("{field}: {quantity} = {value:e} ({hint})")]
     Derived {
+        /// The layer (`layers[i]`) or the whole rod (`layers`) the quantity belongs to.
         field: String,
+        /// The derived quantity's name (wave speed, impedance, mass, ...).
         quantity: &'static str,
+        /// Its value in the scene's units.
         value: f64,
+        /// What to change: other units, or the layer's numbers.
         hint: &'static str,
     },
     /// Malformed scene text.
@@ -315,8 +325,11 @@ pub struct LayerProps {
     pub bottom: f64,
     /// Height of the layer's top.
     pub top: f64,
+    /// `L_i`, the undeformed length.
     pub length: f64,
+    /// Young's modulus `E_i`.
     pub modulus: f64,
+    /// Density `rho_i` (mass per unit volume; the cross-section is one).
     pub density: f64,
     /// `c = sqrt(E / rho)`.
     pub wave_speed: f64,
@@ -420,16 +433,17 @@ impl Rod {
         &self.scaled
     }
 
-    /// The scales between the scene's units and internal units.
     /// The wall's contact law: the scene's, or the paper's by default.
     pub fn wall_contact(&self) -> WallContact {
         self.scene.wall_contact.unwrap_or_default()
     }
 
+    /// The scales between the scene's units and internal units.
     pub fn units(&self) -> &Units {
         &self.units
     }
 
+    /// `v_b`, the speed at which the rod hits the wall, in the scene's units.
     pub fn impact_speed(&self) -> f64 {
         self.scene.impact_speed
     }
@@ -439,10 +453,12 @@ impl Rod {
         self.scene.impact_speed / self.units.amplitude
     }
 
+    /// Total length `L`, in the scene's units.
     pub fn total_length(&self) -> f64 {
         self.layers.last().map_or(0.0, |l| l.top)
     }
 
+    /// Total mass `M` per unit cross-section, in the scene's units.
     pub fn mass(&self) -> f64 {
         self.scaled_mass() * self.units.mass
     }

@@ -79,13 +79,16 @@ impl fmt::Display for Allowed {
 #[derive(Debug, Clone, PartialEq, Error)]
 #[error("{field} must be {allowed} (got {value})")]
 pub struct SettingError {
+    /// The settings struct's field (or documented name) that is out of range.
     pub field: &'static str,
+    /// The range it must lie in.
     pub allowed: Allowed,
     /// The value as given, spelled as Rust displays it (`-1`, `NaN`, `0`).
     pub value: String,
 }
 
 impl SettingError {
+    /// The error for `field`, whose value `value` is outside `allowed`.
     pub fn new(field: &'static str, allowed: Allowed, value: impl fmt::Display) -> Self {
         Self {
             field,

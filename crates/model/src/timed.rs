@@ -11,6 +11,7 @@ use std::time::Instant;
 /// outcome with one more key. Dereferences to the value.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Timed<T> {
+    /// The value computed, its keys written first.
     #[serde(flatten)]
     pub value: T,
     /// Wall-clock seconds (0 when the runner was asked not to time, so

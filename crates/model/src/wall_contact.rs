@@ -14,6 +14,8 @@
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
+/// How the wall acts on a viscous bottom element: the paper's law or a wall
+/// that only pushes. A property of the scene, part of the model.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum WallContact {
@@ -27,6 +29,7 @@ pub enum WallContact {
 }
 
 impl WallContact {
+    /// Both laws, the paper's first.
     pub const ALL: [WallContact; 2] = [WallContact::Paper, WallContact::Unilateral];
 
     /// The name used in scenes, flags and outputs.

@@ -6,6 +6,7 @@ use serde::{Deserialize, Serialize};
 /// wall event, the chain every few steps.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct WallSample {
+    /// Time of the sample, in the scene's units.
     pub time: f64,
     /// Wall strain `eps0` (compression negative; zero when free).
     pub strain: f64,

@@ -7,6 +7,8 @@
 //! cost, paper and diagram crates build only their content; this crate
 //! knows nothing about impacts.
 
+#![warn(missing_docs)]
+
 pub mod csv;
 mod dir;
 mod page;

@@ -105,7 +105,9 @@ const OPENING: &str = "<!DOCTYPE html>\n<html xmlns=\"http://www.w3.org/1999/xht
 pub struct Head<'a> {
     /// Plain text: escaped by [`page`].
     pub title: &'a str,
+    /// The stylesheet in `<style>`: the shared one, extended or overridden.
     pub style: Stylesheet,
+    /// Where the shell breaks lines (kept per page so its bytes do not change).
     pub layout: Layout,
 }
 

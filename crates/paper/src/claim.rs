@@ -6,7 +6,9 @@ use serde::Serialize;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Verdict {
+    /// Our numbers support the statement.
     Agrees,
+    /// Our numbers contradict it; `comment` says which side is right.
     Disagrees,
 }
 
@@ -19,6 +21,7 @@ pub struct Claim {
     pub paper: String,
     /// What we find.
     pub ours: String,
+    /// Whether they agree, computed from the numbers.
     pub verdict: Verdict,
     /// When they disagree: which side the evidence supports, and why.
     pub comment: String,
@@ -44,12 +47,17 @@ impl Claim {
 /// One figure (or group) of the reproduction.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Item {
+    /// Short identifier (`fig2`), the anchor on the report page.
     pub id: String,
+    /// Heading on the report page.
     pub title: String,
-    /// Figure stems written (each as `.svg`, `.png`) and data files.
+    /// Figure stems written (each as `.svg` and `.png`).
     pub figures: Vec<String>,
+    /// Data files written (CSV), relative to the report directory.
     pub data: Vec<String>,
+    /// The paper's statements beside our numbers.
     pub claims: Vec<Claim>,
+    /// How the figure was made (engine, sizes, units), for the reader.
     pub notes: Vec<String>,
 }
 

@@ -5,6 +5,8 @@
 //! One module per figure group; each writes `DIR/<stem>.svg`, `.png` and
 //! `.csv` and returns an [`Item`] for the report page.
 
+#![warn(missing_docs)]
+
 mod appendix_c;
 mod claim;
 mod cost;
@@ -27,16 +29,22 @@ use thiserror::Error;
 /// Why a reproduction could not be written.
 #[derive(Debug, Error)]
 pub enum PaperError {
+    /// A figure could not be drawn or rendered.
     #[error(transparent)]
     Plot(#[from] impact_plot::PlotError),
+    /// A file could not be written.
     #[error(transparent)]
     Io(#[from] std::io::Error),
+    /// A scene was invalid.
     #[error(transparent)]
     Scene(#[from] impact_model::SceneError),
+    /// The exact engine failed.
     #[error(transparent)]
     Wave(#[from] impact_wave::WaveError),
+    /// The chain failed.
     #[error(transparent)]
     Chain(#[from] impact_chain::ChainError),
+    /// The cost section failed.
     #[error(transparent)]
     Cost(#[from] impact_cost::CostError),
     /// A figure's own failure, in words.

@@ -4,7 +4,9 @@
 /// Which of the resolutions below a reproduction runs at.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Resolution {
+    /// Minutes on a laptop: coarser grids and smaller chains.
     Quick,
+    /// The paper's own sizes.
     Full,
     /// Toy sizes for the tests.
     Tiny,
@@ -24,19 +26,24 @@ impl std::fmt::Display for Resolution {
 /// What to compute, and how finely.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Settings {
+    /// Which resolution these are.
     pub resolution: Resolution,
-    /// Fig. 2: values of `tau c / L`, and the chain size.
+    /// Fig. 2: values of `tau c / L`.
     pub fig2_tau: Vec<f64>,
+    /// Fig. 2: chain size.
     pub fig2_masses: usize,
     /// Figs. 4-6: the exact engine on this grid step (the paper's 0.005 costs
     /// a tenth of a second, so both modes use it).
     pub map_step: f64,
-    /// Fig. 7: alpha step, and the x step of the scan for the minimum.
+    /// Fig. 7: the `alpha` step.
     pub fig7_alpha_step: f64,
+    /// Fig. 7: the `x` step of the scan for the minimum `e`.
     pub fig7_x_step: f64,
-    /// Figs. 8-10: layer restitutions varied, x step, chain size.
+    /// Figs. 8-10: the layer restitutions varied.
     pub visco_values: Vec<f64>,
+    /// Figs. 8-10: the `x` step.
     pub visco_x_step: f64,
+    /// Figs. 8-10: chain size.
     pub visco_masses: usize,
     /// Fig. 11: chain sizes.
     pub fig11_sizes: Vec<usize>,

@@ -3,20 +3,27 @@
 /// Linear or logarithmic.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Scale {
+    /// Values map linearly to pixels.
     Linear,
+    /// Logarithms of the values map linearly to pixels (positive values only).
     Log,
 }
 
 /// A data range drawn onto a pixel range.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Axis {
+    /// Value at the start of the axis (left, or bottom).
     pub min: f64,
+    /// Value at the end of the axis (right, or top).
     pub max: f64,
+    /// Linear or logarithmic.
     pub scale: Scale,
+    /// Axis title, plain text (escaped when drawn).
     pub label: String,
 }
 
 impl Axis {
+    /// A linear axis from `min` to `max`.
     pub fn linear(min: f64, max: f64, label: &str) -> Self {
         Self {
             min,
@@ -26,6 +33,7 @@ impl Axis {
         }
     }
 
+    /// A logarithmic axis from `min` to `max` (both positive).
     pub fn log(min: f64, max: f64, label: &str) -> Self {
         Self {
             min,

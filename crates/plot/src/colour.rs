@@ -5,7 +5,9 @@
 pub struct Colour(pub u8, pub u8, pub u8);
 
 impl Colour {
+    /// White: zero on the diverging map.
     pub const WHITE: Colour = Colour(255, 255, 255);
+    /// Light grey: missing values (NaN cells, unknown categories).
     pub const GREY: Colour = Colour(200, 200, 200);
 
     /// `#rrggbb`.

@@ -7,7 +7,9 @@ use crate::svg::{Anchor, Svg};
 /// A named colour for categorical heatmaps.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Category {
+    /// Name shown in the legend.
     pub name: String,
+    /// Fill of the cells in this category.
     pub colour: Colour,
 }
 
@@ -15,17 +17,23 @@ pub struct Category {
 /// top. NaN cells are drawn grey (missing).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Heatmap {
+    /// Title above the map.
     pub title: String,
+    /// Label of the horizontal axis (the columns).
     pub x_label: String,
+    /// Label of the vertical axis (the rows).
     pub y_label: String,
     /// Centres of the columns (increasing, evenly spaced).
     pub columns: Vec<f64>,
     /// Centres of the rows (increasing, evenly spaced).
     pub rows: Vec<f64>,
+    /// Cell values, row by row from the bottom; NaN for missing.
     pub values: Vec<f64>,
+    /// How values become colours (ignored for categories).
     pub colourmap: Colourmap,
     /// Colour scale; ignored for categories.
     pub range: (f64, f64),
+    /// Title of the colour bar.
     pub colourbar_label: String,
     /// When set, `values` are indices into these categories.
     pub categories: Option<Vec<Category>>,

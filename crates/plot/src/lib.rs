@@ -5,6 +5,8 @@
 //! font embedded from `data/fonts`, so they look the same on every machine and
 //! need no system library.
 
+#![warn(missing_docs)]
+
 mod axis;
 mod colour;
 mod contour;

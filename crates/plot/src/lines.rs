@@ -8,17 +8,24 @@ use crate::svg::{Anchor, Svg};
 /// Point marker of a series.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Marker {
+    /// No marker: a line only.
     None,
+    /// A filled circle at each point.
     Circle,
+    /// A filled square at each point.
     Square,
 }
 
 /// One named data series.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Series {
+    /// Name shown in the legend.
     pub name: String,
+    /// Data points `(x, y)`, in the order they are joined.
     pub points: Vec<(f64, f64)>,
+    /// Colour of the line and markers.
     pub colour: Colour,
+    /// Marker drawn at each point.
     pub marker: Marker,
     /// Join the points with a line.
     pub line: bool,
@@ -27,6 +34,7 @@ pub struct Series {
 }
 
 impl Series {
+    /// A solid line through `points`, no markers.
     pub fn line(name: &str, points: Vec<(f64, f64)>, colour: Colour) -> Self {
         Self {
             name: name.into(),
@@ -38,6 +46,7 @@ impl Series {
         }
     }
 
+    /// Circles at `points`, not joined.
     pub fn markers(name: &str, points: Vec<(f64, f64)>, colour: Colour) -> Self {
         Self {
             name: name.into(),
@@ -49,6 +58,7 @@ impl Series {
         }
     }
 
+    /// The same series with a dashed line (for fits and closed forms).
     pub fn dashed(mut self) -> Self {
         self.dashed = true;
         self
@@ -58,9 +68,13 @@ impl Series {
 /// A plot of series against two axes.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LinePlot {
+    /// Title above the plot.
     pub title: String,
+    /// Horizontal axis.
     pub x: Axis,
+    /// Vertical axis.
     pub y: Axis,
+    /// The series, drawn in order and listed in the legend.
     pub series: Vec<Series>,
 }
 
@@ -69,6 +83,7 @@ const TOP: f64 = 40.0;
 const SIZE: f64 = 420.0;
 
 impl LinePlot {
+    /// The plot as a complete SVG document, with axes, ticks and legend.
     pub fn to_svg(&self) -> String {
         let mut svg = Svg::new(LEFT + SIZE + 220.0, TOP + SIZE + 60.0);
         let (x, y) = (&self.x, &self.y);

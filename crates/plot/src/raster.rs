@@ -7,12 +7,16 @@ use thiserror::Error;
 /// Why a figure could not be written.
 #[derive(Debug, Error)]
 pub enum PlotError {
+    /// The SVG text did not parse (the parser's message).
     #[error("SVG could not be parsed: {0}")]
     Svg(String),
+    /// A pixmap of this width and height could not be allocated.
     #[error("figure of {0} x {1} pixels could not be rendered")]
     Size(u32, u32),
+    /// The PNG encoder failed (its message).
     #[error("PNG encoding failed: {0}")]
     Png(String),
+    /// The file could not be written.
     #[error(transparent)]
     Io(#[from] std::io::Error),
 }

@@ -6,8 +6,11 @@ use std::fmt::Write as _;
 /// Horizontal text anchor.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Anchor {
+    /// Text starts at the point.
     Start,
+    /// Text is centred on the point.
     Middle,
+    /// Text ends at the point.
     End,
 }
 
@@ -24,7 +27,9 @@ impl Anchor {
 /// An SVG document being written. Coordinates in pixels, y down.
 #[derive(Debug, Clone)]
 pub struct Svg {
+    /// Document width, in pixels.
     pub width: f64,
+    /// Document height, in pixels.
     pub height: f64,
     body: String,
 }
@@ -36,6 +41,7 @@ fn n(v: f64) -> String {
 }
 
 impl Svg {
+    /// An empty document of the given size in pixels.
     pub fn new(width: f64, height: f64) -> Self {
         Self {
             width,
@@ -50,6 +56,7 @@ impl Svg {
         self.body.push('\n');
     }
 
+    /// A rectangle with top-left corner `(x, y)`, width `w` and height `h`; `extra` holds further attributes.
     pub fn rect(&mut self, x: f64, y: f64, w: f64, h: f64, fill: &str, extra: &str) {
         let _ = writeln!(
             self.body,
@@ -61,6 +68,7 @@ impl Svg {
         );
     }
 
+    /// A straight line from `from` to `to`, `width` pixels wide; `extra` holds further attributes.
     pub fn line(
         &mut self,
         from: (f64, f64),
@@ -96,6 +104,7 @@ impl Svg {
         );
     }
 
+    /// A circle of radius `r` centred on `(x, y)`; `extra` holds further attributes.
     pub fn circle(&mut self, x: f64, y: f64, r: f64, fill: &str, extra: &str) {
         let _ = writeln!(
             self.body,

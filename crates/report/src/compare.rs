@@ -9,6 +9,7 @@ use serde::{Deserialize, Serialize};
 /// What to compare and the tolerances that define agreement.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CompareSettings {
+    /// Settings of the exact engine.
     pub wave: WaveConfig,
     /// Chain settings; `masses` is replaced by each of `sizes`.
     pub chain: ChainConfig,
@@ -56,6 +57,7 @@ pub enum Verdict {
 }
 
 impl Verdict {
+    /// Every verdict, in the order the report lists them.
     pub const ALL: [Verdict; 8] = [
         Verdict::Agree,
         Verdict::FiniteSize,
@@ -67,6 +69,7 @@ impl Verdict {
         Verdict::Failed,
     ];
 
+    /// Short name, used in tables and the JSON.
     pub fn name(self) -> &'static str {
         match self {
             Verdict::Agree => "agree",
@@ -110,11 +113,15 @@ impl Verdict {
 /// Everything known about one grid point.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ComparePoint {
+    /// Composition `x = L2 / L`.
     pub x: f64,
+    /// Stiffness ratio `alpha = E2 / (E1 + E2)`.
     pub alpha: f64,
+    /// The exact engine's outcome (none when it failed).
     pub exact: Option<Timed<Outcome>>,
     /// The chain at each size of `sizes`.
     pub chain: Vec<Timed<Outcome>>,
+    /// Chain sizes `N`, increasing.
     pub sizes: Vec<usize>,
     /// `e_chain - e_exact` at each size.
     pub restitution_difference: Vec<f64>,
@@ -132,7 +139,9 @@ pub struct ComparePoint {
     /// `alpha` at which the exact engine reproduces the chain's bounce count
     /// and contact-time class, if within the probe.
     pub boundary_distance: Option<f64>,
+    /// Why the engines disagree here, if they do.
     pub verdict: Verdict,
+    /// Why an engine failed: which one (and at which `N`), in its own words.
     pub error: Option<String>,
 }
 
@@ -355,14 +364,19 @@ fn classify(p: &ComparePoint, s: &CompareSettings) -> Verdict {
 /// Figures over all points.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Summary {
+    /// Points compared.
     pub points: usize,
+    /// Points where an engine failed.
     pub failed: usize,
+    /// Largest `|e_chain - e_exact|` at the finest chain size.
     pub max_abs_de: f64,
+    /// Median `|e_chain - e_exact|` at the finest chain size.
     pub median_abs_de: f64,
     /// Share of points where the filtered bounce counts agree.
     pub bounces_agree: f64,
     /// Share of points within every tolerance.
     pub agree: f64,
+    /// How many points got each verdict.
     pub verdicts: Vec<(Verdict, usize)>,
     /// Indices of the points with the largest `|de|`, worst first.
     pub worst: Vec<usize>,

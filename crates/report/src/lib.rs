@@ -4,6 +4,8 @@
 //! Architecture invariant: the report knows the engines only through their
 //! `Outcome`s and settings; it draws with `impact-plot`.
 
+#![warn(missing_docs)]
+
 pub mod compare;
 pub mod html;
 pub mod write;

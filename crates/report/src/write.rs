@@ -11,7 +11,9 @@ use std::path::Path;
 /// `x` inner).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ReportGrid {
+    /// The `x` values (columns of the maps).
     pub x: Vec<f64>,
+    /// The `alpha` values (rows of the maps).
     pub alpha: Vec<f64>,
 }
 

@@ -32,12 +32,16 @@ pub enum RigidStop {
     /// When the rod is free and can provably never touch the wall again.
     Escape,
     /// At `factor * max(t_i)` (the paper's 20).
-    Horizon { factor: f64 },
+    Horizon {
+        /// The multiple of the longest transit time `max(t_i)` at which to stop.
+        factor: f64,
+    },
 }
 
 /// Settings of the rigid-bottom model.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct RigidConfig {
+    /// When the run ends. Default: the escape bound.
     pub stop: RigidStop,
     /// A landing slower than `rest_ratio` times the speed scale of the push
     /// (`2 |beta|`, the speed at which drag and push balance) while the
@@ -81,18 +85,33 @@ impl Default for RigidConfig {
 /// Why the model could not run or finish.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum RigidError {
+    /// A viscous layer: the model's stack is elastic and its bottom rigid.
     #[error("layers[{layer}] is viscous: the rigid-bottom model has elastic layers only")]
-    ViscousLayer { layer: usize },
+    ViscousLayer {
+        /// Index of the first viscous layer, bottom first.
+        layer: usize,
+    },
+    /// A numerical setting outside its range.
     #[error("invalid setting: {0}")]
     Setting(#[from] SettingError),
+    /// The event budget `max_events` was spent before the rod left for good.
     #[error(
         "the rigid-bottom model stopped after {events} events at t = {time:.6e} without the rod leaving for good"
     )]
-    EventLimit { events: u64, time: f64 },
+    EventLimit {
+        /// Events processed.
+        events: u64,
+        /// Time reached, in the scene's units.
+        time: f64,
+    },
+    /// The stop rule is a horizon and the mass still touched the wall there.
     #[error(
         "the horizon t = {time:.6e} was reached while the mass still touched the wall: t_c and e are not final"
     )]
-    Unfinished { time: f64 },
+    Unfinished {
+        /// The horizon, in the scene's units.
+        time: f64,
+    },
 }
 
 /// What the mass is doing.
@@ -146,6 +165,9 @@ pub struct RigidBottom {
 }
 
 impl RigidBottom {
+    /// The model of `rod`: its bottom layer as the rigid mass, the layers
+    /// above as the elastic stack, at the moment of impact. Refuses viscous
+    /// layers and settings out of range.
     pub fn new(rod: &Rod, config: &RigidConfig) -> Result<Self, RigidError> {
         if let Some(i) = rod.scene().layers.iter().position(|l| l.is_viscous()) {
             return Err(RigidError::ViscousLayer { layer: i });

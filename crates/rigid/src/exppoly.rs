@@ -38,6 +38,7 @@ fn factorial(k: usize) -> f64 {
 }
 
 impl ExpPoly {
+    /// The constant `c` (no exponential part).
     pub fn constant(c: f64) -> Self {
         Self {
             p: vec![c],
@@ -80,6 +81,7 @@ impl ExpPoly {
         out
     }
 
+    /// `a self`.
     pub fn scaled(&self, a: f64) -> ExpPoly {
         self.combine(a, &ExpPoly::default(), 0.0)
     }

@@ -13,6 +13,8 @@
 //! Architecture invariant: this crate knows nothing about the other engines,
 //! output formats or the command line.
 
+#![warn(missing_docs)]
+
 mod engine;
 pub mod exppoly;
 mod stack;

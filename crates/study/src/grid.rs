@@ -6,22 +6,49 @@ use thiserror::Error;
 /// A malformed axis or a grid point outside the allowed range.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum GridError {
+    /// The text is not `START:STOP:STEP` or a single number.
     #[error("{name} must be START:STOP:STEP or a single value, with numbers (got '{text}')")]
-    Syntax { name: &'static str, text: String },
+    Syntax {
+        /// The axis (`x` or `alpha`).
+        name: &'static str,
+        /// What was given.
+        text: String,
+    },
+    /// A step that is not positive, or a start past the stop.
     #[error("{name} must have STEP > 0 and START <= STOP (got '{text}')")]
-    Order { name: &'static str, text: String },
+    Order {
+        /// The axis (`x` or `alpha`).
+        name: &'static str,
+        /// What was given.
+        text: String,
+    },
+    /// More than `10^7` values on one axis.
     #[error("{name} spans {count} values; at most 10^7 are allowed")]
-    TooMany { name: &'static str, count: f64 },
+    TooMany {
+        /// The axis (`x` or `alpha`).
+        name: &'static str,
+        /// How many values it would span.
+        count: f64,
+    },
+    /// A value outside `(0, 1)`, where `x` and `alpha` of a bilayer live.
     #[error("{name} values must be numbers in (0, 1) (got {value})")]
-    Range { name: &'static str, value: f64 },
+    Range {
+        /// The axis (`x` or `alpha`).
+        name: &'static str,
+        /// The offending value.
+        value: f64,
+    },
 }
 
 /// Evenly spaced values `start, start + step, ..., stop` (inclusive, with the
 /// count rounded so that rounding of `stop` never drops the last value).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Axis {
+    /// First value.
     pub start: f64,
+    /// Last value (reached within rounding).
     pub stop: f64,
+    /// Spacing between values (positive).
     pub step: f64,
 }
 
@@ -103,7 +130,9 @@ impl Axis {
 /// A rectangular grid over composition `x` and stiffness ratio `alpha`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Grid {
+    /// Composition `x = L2 / L` values.
     pub x: Axis,
+    /// Stiffness ratio `alpha = E2 / (E1 + E2)` values.
     pub alpha: Axis,
 }
 

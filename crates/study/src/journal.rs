@@ -18,25 +18,41 @@ use thiserror::Error;
 /// Problems with a journal, each saying what to do.
 #[derive(Debug, Error)]
 pub enum JournalError {
+    /// A shard not written `I/N` with `1 <= I <= N` (the text given).
     #[error("shard must be I/N with 1 <= I <= N (got '{0}')")]
     Shard(String),
+    /// A shard's journal already has points and resuming was not asked for.
     #[error("{0} exists: resume it, or remove it")]
     Exists(PathBuf),
+    /// Another process holds the journal's lock.
     #[error("{path} is being written by another process{}: wait for it to finish or stop it", holder.as_ref().map_or_else(String::new, |h| format!(" ({h})")))]
     Locked {
+        /// The journal.
         path: PathBuf,
+        /// Who holds the lock (PID and host from its note), when known.
         holder: Option<String>,
     },
+    /// The journal's header differs from this run's: resuming or merging it would mix runs.
     #[error(
         "{path} was written by a different run ({what} differs): use the same settings, or another file"
     )]
-    Mismatch { path: PathBuf, what: &'static str },
+    Mismatch {
+        /// The journal.
+        path: PathBuf,
+        /// What differs (the command, the settings, the tool's version, ...).
+        what: &'static str,
+    },
+    /// A line, other than a torn last one, that does not parse.
     #[error("{path} line {line} is not a journal entry: {reason}")]
     Corrupt {
+        /// The journal.
         path: PathBuf,
+        /// Line number, from 1.
         line: usize,
+        /// Why it does not parse.
         reason: String,
     },
+    /// The merged journals do not cover the grid.
     #[error(
         "the journals miss {missing} of {total} points (first missing: index {first}), in shard{} {} of {}: complete {} and merge again",
         if shards.len() == 1 { "" } else { "s" },
@@ -45,37 +61,60 @@ pub enum JournalError {
         if shards.len() == 1 { "it" } else { "them" }
     )]
     Incomplete {
+        /// Points missing.
         missing: usize,
+        /// Points in the grid.
         total: usize,
+        /// Index of the first missing point.
         first: usize,
         /// The shards the missing points belong to.
         shards: Vec<Shard>,
     },
+    /// One journal passed twice to a merge.
     #[error("{0} is given twice")]
     GivenTwice(PathBuf),
+    /// Two journals claim the same shard.
     #[error("{first} and {second} are both shard {}/{}: give each shard once", shard.index, shard.count)]
     SameShard {
+        /// The first journal.
         first: PathBuf,
+        /// The second journal.
         second: PathBuf,
+        /// The shard both claim.
         shard: Shard,
     },
+    /// Journals of different shard counts.
     #[error(
         "{first} is shard {}/{} but {second} is shard {}/{}: merge the journals of one sharding",
         a.index, a.count, b.index, b.count
     )]
     MixedShardings {
+        /// The first journal.
         first: PathBuf,
+        /// The second journal.
         second: PathBuf,
+        /// The first journal's shard.
         a: Shard,
+        /// The second journal's shard.
         b: Shard,
     },
+    /// One point with two different results: the journals were not written by one deterministic run.
     #[error("point {index} appears twice with different results (in {path})")]
-    Conflict { index: usize, path: PathBuf },
+    Conflict {
+        /// The grid point.
+        index: usize,
+        /// The journal holding the second result.
+        path: PathBuf,
+    },
+    /// A merge of no journals.
     #[error("no journal given")]
     Empty,
+    /// Reading, writing or locking a file failed.
     #[error("{path}: {source}")]
     Io {
+        /// The file.
         path: PathBuf,
+        /// The operating system's error.
         source: std::io::Error,
     },
 }
@@ -110,13 +149,17 @@ fn io(path: &Path) -> impl Fn(std::io::Error) -> JournalError + '_ {
 /// `k mod count + 1`, which spreads costly regions evenly over the shards.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Shard {
+    /// This shard's number, from 1.
     pub index: u32,
+    /// Number of shards the grid is split into.
     pub count: u32,
 }
 
 impl Shard {
+    /// The whole grid as one shard.
     pub const ALL: Shard = Shard { index: 1, count: 1 };
 
+    /// Parses `I/N`, refusing `I = 0` and `I > N`.
     pub fn parse(text: &str) -> Result<Self, JournalError> {
         let bad = || JournalError::Shard(text.to_string());
         let (i, n) = text.split_once('/').ok_or_else(bad)?;
@@ -130,6 +173,7 @@ impl Shard {
         Ok(Shard { index, count })
     }
 
+    /// Whether grid point `point` (0-based) belongs to this shard.
     pub fn contains(&self, point: usize) -> bool {
         point % self.count as usize == (self.index - 1) as usize
     }
@@ -148,6 +192,7 @@ pub struct JournalHeader {
     pub settings: serde_json::Value,
     /// Points in the whole grid (all shards).
     pub points: usize,
+    /// The shard this journal holds.
     pub shard: Shard,
 }
 
@@ -170,6 +215,7 @@ impl JournalHeader {
         }
     }
 
+    /// The header, in the current journal format, of `command` run with `settings` over `points` grid points.
     pub fn new(command: &str, settings: serde_json::Value, points: usize, shard: Shard) -> Self {
         Self {
             journal: "impact-journal/2".into(),
@@ -318,6 +364,7 @@ impl Journal {
         file.write_all(line.as_bytes()).map_err(io(&self.path))
     }
 
+    /// The journal's file.
     pub fn path(&self) -> &Path {
         &self.path
     }

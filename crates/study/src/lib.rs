@@ -4,6 +4,8 @@
 //! Architecture invariant: nothing here draws progress bars or parses flags;
 //! the binary passes a progress callback and validated settings.
 
+#![warn(missing_docs)]
+
 pub mod grid;
 pub mod journal;
 pub mod limit;

@@ -50,7 +50,9 @@ impl Default for LimitSettings {
 /// extrapolation, and its recording.
 #[derive(Debug, Clone)]
 pub struct ChainLimit {
+    /// The finest run's outcome; its `extrapolation` holds the `N -> infinity` limit.
     pub outcome: Outcome,
+    /// What the finest run recorded.
     pub recording: ChainRecording,
     /// Whether the target was met (`None` without a target).
     pub target_met: Option<bool>,

@@ -18,7 +18,9 @@ use std::path::Path;
 /// Told how many points will run, then once per finished point (from the
 /// worker threads). The binary draws a progress bar with it; `()` ignores it.
 pub trait Progress: Sync {
+    /// Called once, before any point runs, with the number of points.
     fn start(&self, _points: usize) {}
+    /// Called once per finished point, from the worker thread that ran it.
     fn finished_one(&self) {}
 }
 
@@ -44,8 +46,11 @@ pub fn par_map<P: Sync, T: Send>(
 
 /// Where a run keeps its journal and whether it picks up an old one.
 pub struct JournalPlan<'a> {
+    /// The journal file.
     pub path: &'a Path,
+    /// What this run is; a journal with another header is refused.
     pub header: JournalHeader,
+    /// Pick up the points an existing journal already holds.
     pub resume: bool,
 }
 

@@ -13,12 +13,16 @@ use thiserror::Error;
 /// exactly as the engine worded it).
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum RunError {
+    /// The scene was invalid.
     #[error(transparent)]
     Scene(#[from] SceneError),
+    /// The exact engine failed.
     #[error(transparent)]
     Wave(#[from] WaveError),
+    /// The chain failed.
     #[error(transparent)]
     Chain(#[from] ChainError),
+    /// The rigid-bottom model failed.
     #[error(transparent)]
     Rigid(#[from] RigidError),
 }
@@ -27,7 +31,9 @@ pub enum RunError {
 #[derive(Debug, Clone, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Engine {
+    /// The exact front-tracing engine (elastic layers).
     Wave(WaveConfig),
+    /// The discrete mass-spring(-dashpot) chain.
     Chain(ChainConfig),
     /// The rigid-bottom limit (a rigid mass under the elastic stack).
     RigidBottom(RigidConfig),
@@ -37,7 +43,9 @@ pub enum Engine {
 /// `tau_i` or as the paper's layer restitution `e_i` (at most one per layer).
 #[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
 pub struct BilayerViscosity {
+    /// Relaxation time `tau_i` of layer 1 (bottom) and 2 (top).
     pub tau: [Option<f64>; 2],
+    /// The paper's layer restitution `e_i` of layer 1 and 2 (the `tau` that gives it is read from the calibration).
     pub restitution: [Option<f64>; 2],
     /// The wall's contact law (absent: the paper's).
     pub wall_contact: Option<WallContact>,
@@ -55,6 +63,7 @@ impl BilayerViscosity {
         scene
     }
 
+    /// Whether either layer has a dashpot (`tau > 0` or `e < 1`).
     pub fn is_viscous(&self) -> bool {
         self.tau.iter().flatten().any(|&t| t > 0.0)
             || self.restitution.iter().flatten().any(|&e| e < 1.0)
@@ -100,23 +109,39 @@ impl Engine {
 /// One point of a sweep: the scalar observables, or why the point failed.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Row {
+    /// Composition `x = L2 / L` of the point.
     pub x: f64,
+    /// Stiffness ratio `alpha = E2 / (E1 + E2)` of the point.
     pub alpha: f64,
+    /// The engine (`wave`, `chain` or `rigid-bottom`).
     pub engine: String,
     /// The wall's contact law of the run (`paper` or `unilateral`).
     pub wall_contact: String,
+    /// Coefficient of restitution `e`, from the wall impulse.
     pub restitution: Option<f64>,
+    /// `e` from the masses' mean velocity at the end (chain only).
     pub restitution_from_velocity: Option<f64>,
+    /// Contact time `t_c`: time of the last separation.
     pub contact_time: Option<f64>,
+    /// `t_c / (2 t1 + 2 t2)`.
     pub reduced_contact_time: Option<f64>,
+    /// `(t_c - 2 t2) / t1`.
     pub n1: Option<f64>,
+    /// The paper's bounce count `N_b` (flights longer than `min(t1, t2)`).
     pub bounces: Option<u32>,
+    /// Raw number of separations.
     pub separations: Option<u32>,
+    /// Time at which the run stopped.
     pub end_time: Option<f64>,
+    /// Why it stopped (`escaped`, `horizon`, `horizon_in_contact`, `rests_on_wall`).
     pub stop_reason: Option<String>,
+    /// Boundary events processed (wave engine).
     pub events: Option<u64>,
+    /// Time steps taken (chain).
     pub steps: Option<u64>,
+    /// Fronts dropped under the drop tolerance (wave engine).
     pub dropped_fronts: Option<u64>,
+    /// Fronts merged into neighbours (wave engine).
     pub merged_fronts: Option<u64>,
     /// How far `restitution` may be from the model's exact value.
     #[serde(default)]
@@ -124,6 +149,7 @@ pub struct Row {
     /// Wall-clock time: the only column that differs between identical runs.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub elapsed_seconds: Option<f64>,
+    /// Why the point failed, as the engine or scene worded it; the observables are then empty.
     pub error: Option<String>,
 }
 
@@ -250,7 +276,9 @@ impl<'a> CsvRow<'a> {
 /// Output format of a sweep, chosen from the file extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum RowFormat {
+    /// Comma-separated values with a header line.
     Csv,
+    /// One JSON object per line.
     JsonLines,
 }
 

@@ -16,7 +16,10 @@ pub enum StopRule {
     /// Stop at `factor * max(t_i)`, as the paper does with `factor = 20`.
     /// A run that reaches it while the rod still touches the wall has no
     /// final restitution and is reported as unfinished.
-    Horizon { factor: f64 },
+    Horizon {
+        /// The multiple of the longest transit time `max(t_i)` at which to stop (the paper's is 20).
+        factor: f64,
+    },
 }
 
 impl StopRule {
@@ -47,15 +50,23 @@ pub enum Resolution {
     /// at the time of the larger of the two. A lane then holds at most
     /// `1/per_transit + 1/per_longest` fronts. The merge error is of first
     /// order in the windows.
-    Merged { per_transit: f64, per_longest: f64 },
+    Merged {
+        /// Window as a fraction of the lane's own transit time `t_lane`.
+        per_transit: f64,
+        /// Window as a fraction of the rod's longest transit time `max(t_i)`.
+        per_longest: f64,
+    },
     /// Exact when the exact run takes at most `exact_events`; otherwise
     /// merged, the lattice refined by halves until the measured error bound
     /// is at most `target` (in `e`) or the work reaches about
     /// `budget_events` (DESIGN: every scene finishes, with a stated and
     /// tested error bound).
     Auto {
+        /// Largest number of events a run may take and still be reported exact.
         exact_events: u64,
+        /// Work, in events, after which the lattice stops halving.
         budget_events: u64,
+        /// Error bound in `e` at which the lattice stops halving.
         target: f64,
     },
 }
@@ -91,6 +102,7 @@ pub enum Precision {
 /// Numerical settings of [`crate::WaveEngine`] and [`crate::simulate`].
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct WaveConfig {
+    /// When the run ends: the exact escape rule or the paper's horizon.
     pub stop: StopRule,
     /// A front is dropped when its velocity jump `c |d|` is below
     /// `drop_tolerance * v_b`. Default `1e-16`: measured to move `e` by
@@ -118,6 +130,7 @@ pub struct WaveConfig {
     pub max_events: u64,
     /// Refuse to run past `max_time_factor * sum(t_i)`.
     pub max_time_factor: f64,
+    /// What to record beside the outcome (wall samples, fronts); nothing by default.
     pub record: Record,
 }
 

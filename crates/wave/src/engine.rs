@@ -25,6 +25,7 @@ type LaneRule<R> = dyn Fn(f64, f64) -> MergeRule<R>;
 pub struct Step {
     /// When, in the scene's units.
     pub time: f64,
+    /// Which event it was.
     pub kind: StepKind,
 }
 
@@ -36,12 +37,20 @@ pub enum StepKind {
     /// Fronts reached the free top.
     Top,
     /// Fronts reached the wall; `separated` when the rod left it there.
-    Wall { separated: bool },
+    Wall {
+        /// Whether the rod left the wall at this arrival (the wall strain would have turned tensile).
+        separated: bool,
+    },
     /// The free bottom landed on the wall.
     Reconnected,
     /// Layer `layer`'s ringing was advanced in closed form over a quiet
     /// window, standing for `events` boundary events.
-    Leap { layer: usize, events: u64 },
+    Leap {
+        /// Index of the leapt layer, bottom first.
+        layer: usize,
+        /// The boundary events of its ringing that the leap replaced.
+        events: u64,
+    },
     /// The run is over.
     Stopped(StopReason),
 }
@@ -382,6 +391,7 @@ impl<R: Real> Tracer<R> {
         &self.recording
     }
 
+    /// What was dropped and merged so far.
     pub fn truncation(&self) -> Truncation {
         self.drops.truncation
     }

@@ -18,7 +18,9 @@ use crate::real::Real;
 /// Strain and velocity at one point.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FieldSample {
+    /// Strain `du/dy` (negative in compression).
     pub strain: f64,
+    /// Velocity (positive upward).
     pub velocity: f64,
 }
 

@@ -20,7 +20,9 @@ use std::collections::VecDeque;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Direction {
+    /// Travelling up, away from the wall.
     Up,
+    /// Travelling down, towards the wall.
     Down,
 }
 

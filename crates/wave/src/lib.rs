@@ -14,6 +14,8 @@
 //! Architecture invariant: this crate knows nothing about output formats,
 //! plotting or the command line.
 
+#![warn(missing_docs)]
+
 mod config;
 mod engine;
 mod error;

@@ -32,7 +32,9 @@ pub enum EventKey {
 /// An attempt to schedule an event before the current time.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EventInPast {
+    /// Current time.
     pub now: f64,
+    /// Time the event was to be scheduled for, earlier than `now`.
     pub requested: f64,
 }
 
@@ -48,6 +50,7 @@ pub struct EventQueue<R: Real> {
 }
 
 impl<R: Real> EventQueue<R> {
+    /// An empty queue for `lanes` lanes and the rod's other events (reconnection, escape, horizon).
     pub fn new(lanes: usize) -> Self {
         Self {
             heap: PriorityQueue::with_capacity_and_hasher(lanes + 3, Default::default()),
@@ -118,10 +121,12 @@ impl<R: Real> EventQueue<R> {
         Some((self.key(code), R::from_key((p.0).0)))
     }
 
+    /// Number of scheduled events.
     pub fn len(&self) -> usize {
         self.heap.len()
     }
 
+    /// Whether nothing is scheduled.
     pub fn is_empty(&self) -> bool {
         self.heap.is_empty()
     }

@@ -43,26 +43,39 @@ pub trait Real:
     /// Name for messages.
     const NAME: &'static str;
 
+    /// Zero.
     fn zero() -> Self {
         Self::of(0.0)
     }
+    /// One.
     fn one() -> Self {
         Self::of(1.0)
     }
+    /// Minus infinity: a time before every event.
     fn neg_infinity() -> Self {
         Self::of(f64::NEG_INFINITY)
     }
+    /// Absolute value.
     fn abs(self) -> Self;
+    /// Largest integer not above the number.
     fn floor(self) -> Self;
+    /// Smallest integer not below the number.
     fn ceil(self) -> Self;
+    /// Nearest integer.
     fn round(self) -> Self;
+    /// Natural logarithm.
     fn ln(self) -> Self;
+    /// Integer power.
     fn powi(self, n: i32) -> Self;
+    /// Real power.
     fn powf(self, n: Self) -> Self;
     /// `exp(x) - 1`, accurate for small `x`.
     fn exp_m1(self) -> Self;
+    /// Neither infinite nor NaN.
     fn is_finite(self) -> bool;
+    /// Not a number.
     fn is_nan(self) -> bool;
+    /// The larger of the two; a NaN loses to a number.
     fn max(self, other: Self) -> Self {
         if other > self || self.is_nan() {
             other
@@ -70,6 +83,7 @@ pub trait Real:
             self
         }
     }
+    /// The smaller of the two; a NaN loses to a number.
     fn min(self, other: Self) -> Self {
         if other < self || self.is_nan() {
             other
@@ -163,9 +177,11 @@ impl Real for f64 {
 pub struct DoubleDouble(TwoFloat);
 
 impl DoubleDouble {
+    /// The leading double: the number rounded to double precision.
     pub fn hi(self) -> f64 {
         self.0.hi()
     }
+    /// The trailing double: what the leading one misses.
     pub fn lo(self) -> f64 {
         self.0.lo()
     }

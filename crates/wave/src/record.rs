@@ -9,8 +9,11 @@ pub use impact_model::WallSample;
 /// The path of one front, from birth to arrival, and where it came from.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FrontRecord {
+    /// Identifier, in order of birth; `parents` refer to it.
     pub id: u32,
+    /// Index of the layer it crosses, bottom first.
     pub layer: usize,
+    /// Up (away from the wall) or down.
     pub direction: Direction,
     /// Birth time, at the bottom (up) or top (down) of its layer.
     pub born: f64,
@@ -26,6 +29,8 @@ pub struct FrontRecord {
 /// Everything recorded during a run.
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct Recording {
+    /// The wall's state after each wall event.
     pub wall: Vec<WallSample>,
+    /// Every front born during the run.
     pub fronts: Vec<FrontRecord>,
 }

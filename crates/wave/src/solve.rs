@@ -46,7 +46,9 @@ const DOUBLE_DOUBLE_EVENTS: u64 = 1_000_000;
 /// What [`solve`] returns: the outcome with its error estimate, and the
 /// double-precision engine of the reported run (for its records).
 pub struct Solution {
+    /// The outcome, with its error estimate.
     pub outcome: Outcome,
+    /// The double-precision engine of the reported run, holding its records.
     pub engine: WaveEngine,
 }
 

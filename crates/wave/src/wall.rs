@@ -11,10 +11,20 @@ use crate::real::Real;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum ContactState<R = f64> {
     /// Touching the wall with wall strain `strain` (<= 0: compression).
-    InContact { strain: R },
+    InContact {
+        /// Wall strain `eps0` (<= 0: compression).
+        strain: R,
+    },
     /// Free: the bottom is at `height` above the wall at time `at`, moving with
     /// `velocity` (positive upward).
-    Free { height: R, velocity: R, at: R },
+    Free {
+        /// Height of the bottom above the wall at time `at`.
+        height: R,
+        /// Velocity of the bottom (positive upward), constant while no front reaches it.
+        velocity: R,
+        /// Time at which `height` holds.
+        at: R,
+    },
 }
 
 impl<R: Real> ContactState<R> {

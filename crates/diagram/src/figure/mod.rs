@@ -26,6 +26,7 @@ use panel::Panel;
 /// The chain's strain field: frames in time, rows of equal height.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ChainPicture {
+    /// Strain frames in time order, rows bottom first.
     pub frames: Vec<RasterFrame>,
 }
 
@@ -34,10 +35,14 @@ pub struct ChainPicture {
 pub enum Picture {
     /// The exact field, its fronts, and the takeoff path (front ids).
     Exact {
+        /// The exact strain field, as polygons.
         field: ExactField,
+        /// Every front of the run.
         fronts: Vec<FrontRecord>,
+        /// Ids of the fronts on the path that triggers the final takeoff, from its origin (the impact or a landing) on.
         path: Vec<u32>,
     },
+    /// The chain's strain field, averaged into rows.
     Chain(ChainPicture),
 }
 
@@ -76,11 +81,15 @@ impl Default for DiagramOptions {
 /// A run to draw: the rod, its outcome, its wall history and the pictures.
 #[derive(Debug, Clone)]
 pub struct Diagram {
+    /// Title above the figure.
     pub title: String,
+    /// The rod drawn (its layers give the interfaces and transit-time ticks).
     pub rod: Rod,
+    /// The run's outcome (contacts, `e`, `t_c`).
     pub outcome: Outcome,
     /// `(time, wall strain)` after each wall event (exact) or sample (chain).
     pub wall: Vec<(f64, f64)>,
+    /// The panels, each with its caption.
     pub pictures: Vec<(String, Picture)>,
 }
 

@@ -8,19 +8,23 @@
 /// The line `y = slope x + intercept`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Line {
+    /// Change of `y` per unit of `x`.
     pub slope: f64,
+    /// `y` at `x = 0`.
     pub intercept: f64,
 }
 
 /// The power law `y = prefactor x^exponent`, fitted on log-log axes.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PowerLaw {
+    /// Exponent: the slope of the fitted line on log-log axes.
     pub exponent: f64,
     /// `ln prefactor`: the fitted line's intercept on log-log axes.
     pub ln_prefactor: f64,
 }
 
 impl PowerLaw {
+    /// The prefactor `exp(ln_prefactor)`: `y` at `x = 1`.
     pub fn prefactor(&self) -> f64 {
         self.ln_prefactor.exp()
     }

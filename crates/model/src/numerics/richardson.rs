@@ -24,8 +24,9 @@ const SAFETY_UNCLEAR: f64 = 3.0;
 /// The extrapolated value of a sequence and how far it may be off.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Extrapolation {
-    /// The sizes (ascending) and the values computed at them.
+    /// The sizes (ascending).
     pub sizes: Vec<usize>,
+    /// The value at each size, in the order of `sizes`.
     pub values: Vec<f64>,
     /// Observed order `p` of `|e(N) - e_inf| ~ N^-p` from the last three
     /// sizes, when their changes are monotone.
