@@ -42,6 +42,8 @@ pub enum Command {
     Reproduce(ReproduceArgs),
     /// What accuracy costs in time: both engines' settings against error and time
     Cost(CostArgs),
+    /// The map, any impact's wave paths and a scene editor, live in the browser
+    Explore(ExploreArgs),
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -427,6 +429,25 @@ pub struct CostArgs {
     /// The wall's contact law of the viscous part of the study: paper (default) or unilateral
     #[arg(long, value_name = "LAW", value_parser = parse_wall_contact)]
     pub wall_contact: Option<WallContact>,
+}
+
+#[derive(Args, Debug)]
+#[command(
+    after_help = "The page lives at the printed URL; its API (GET /api/run?x=X&alpha=A, POST /api/run with a scene, /api/diagram, /api/map?step=S) answers with what `impact run --json` prints.\n\nExamples:\n  impact explore --open\n  impact explore data/scenes/steel-under-rubber.json --port 0"
+)]
+pub struct ExploreArgs {
+    /// Scene file to show first (JSON); default: the canonical bilayer
+    #[arg(value_name = "SCENE")]
+    pub scene: Option<PathBuf>,
+    /// Port to listen on (0: any free port, printed)
+    #[arg(long, value_name = "P", default_value_t = 8321)]
+    pub port: u16,
+    /// Address to listen on; anything but loopback serves other machines too (a warning says so)
+    #[arg(long, value_name = "ADDR", default_value = "127.0.0.1")]
+    pub bind: std::net::IpAddr,
+    /// Open the page in the default browser
+    #[arg(long)]
+    pub open: bool,
 }
 
 /// What to simulate: a scene file, or the canonical bilayer.

@@ -5,6 +5,7 @@ use crate::input;
 use crate::output::write_atomically;
 use anyhow::Context;
 use impact_diagram::{Diagram, DiagramOptions, chain_run, exact_run, page};
+use impact_model::Scene;
 use std::io::Write;
 
 /// Checks the window and scale flags.
@@ -35,7 +36,33 @@ fn check_flags(a: &DiagramArgs) -> anyhow::Result<()> {
 }
 
 pub fn diagram(a: DiagramArgs) -> anyhow::Result<()> {
-    let (scene, _, name) = a.subject.load()?;
+    let ext = a.out.extension().and_then(|e| e.to_str()).unwrap_or("");
+    let (d, options) = build(&a, None)?;
+    match ext {
+        "html" => write_atomically(&a.out, |w| w.write_all(page(&d, &options).as_bytes()))?,
+        "png" => {
+            let png = impact_plot::png(&d.to_svg(&options), 2.0)?;
+            write_atomically(&a.out, |w| w.write_all(&png))?;
+        }
+        _ => write_atomically(&a.out, |w| w.write_all(d.to_svg(&options).as_bytes()))?,
+    }
+    if a.html && ext != "html" {
+        write_atomically(&a.out.with_extension("html"), |w| {
+            w.write_all(page(&d, &options).as_bytes())
+        })?;
+    }
+    eprintln!("wrote {}", a.out.display());
+    Ok(())
+}
+
+/// Runs what `a` asks for and lays out the figure, on `given` instead of
+/// the scene `a` names when the caller already holds one (the explorer);
+/// writes nothing.
+pub fn build(a: &DiagramArgs, given: Option<Scene>) -> anyhow::Result<(Diagram, DiagramOptions)> {
+    let (scene, _, name) = match given {
+        Some(scene) => (scene, None, "scene".to_string()),
+        None => a.subject.load()?,
+    };
     let rod = scene.validate().map_err(|e| input(e.to_string()))?;
     let ext = a.out.extension().and_then(|e| e.to_str()).unwrap_or("");
     if !matches!(ext, "svg" | "png" | "html") {
@@ -44,7 +71,7 @@ pub fn diagram(a: DiagramArgs) -> anyhow::Result<()> {
             a.out.display()
         )));
     }
-    check_flags(&a)?;
+    check_flags(a)?;
     if rod.is_viscous() && (a.engine == DiagramEngine::Wave || a.side_by_side) {
         return Err(input(
             "the scene has a viscous layer: only --engine chain can draw it",
@@ -94,19 +121,5 @@ pub fn diagram(a: DiagramArgs) -> anyhow::Result<()> {
         draw_fronts: !a.no_fronts,
         ..DiagramOptions::default()
     };
-    match ext {
-        "html" => write_atomically(&a.out, |w| w.write_all(page(&d, &options).as_bytes()))?,
-        "png" => {
-            let png = impact_plot::png(&d.to_svg(&options), 2.0)?;
-            write_atomically(&a.out, |w| w.write_all(&png))?;
-        }
-        _ => write_atomically(&a.out, |w| w.write_all(d.to_svg(&options).as_bytes()))?,
-    }
-    if a.html && ext != "html" {
-        write_atomically(&a.out.with_extension("html"), |w| {
-            w.write_all(page(&d, &options).as_bytes())
-        })?;
-    }
-    eprintln!("wrote {}", a.out.display());
-    Ok(())
+    Ok((d, options))
 }

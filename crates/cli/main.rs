@@ -10,6 +10,7 @@ mod calibrate;
 mod compare;
 mod cost;
 mod diagram;
+mod explore;
 mod flags;
 mod jobs;
 mod merge;
@@ -40,6 +41,20 @@ pub fn input(msg: impl Into<String>) -> anyhow::Error {
     anyhow::Error::new(InputError(msg.into()))
 }
 
+/// clap's message up to its usage block, folded onto one line: what the
+/// command line prints for a malformed command, and what the explorer's
+/// API answers.
+pub fn clap_message(e: &clap::Error) -> String {
+    let text = e.render().to_string();
+    let message: Vec<&str> = text
+        .lines()
+        .take_while(|l| !l.trim_start().starts_with("Usage:") && !l.starts_with("For more"))
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect();
+    format!("{} (see --help)", message.join(" "))
+}
+
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -54,15 +69,7 @@ fn main() -> ExitCode {
                 let _ = e.print();
                 return ExitCode::SUCCESS;
             }
-            // clap's message up to its usage block, folded onto one line
-            let text = e.render().to_string();
-            let message: Vec<&str> = text
-                .lines()
-                .take_while(|l| !l.trim_start().starts_with("Usage:") && !l.starts_with("For more"))
-                .map(str::trim)
-                .filter(|l| !l.is_empty())
-                .collect();
-            eprintln!("{} (see --help)", message.join(" "));
+            eprintln!("{}", clap_message(&e));
             return ExitCode::from(2);
         }
     };
@@ -75,6 +82,7 @@ fn main() -> ExitCode {
         Command::Diagram(a) => diagram::diagram(a),
         Command::Reproduce(a) => reproduce::reproduce(a),
         Command::Cost(a) => cost::cost(a),
+        Command::Explore(a) => explore::explore(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

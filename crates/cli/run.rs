@@ -29,13 +29,51 @@ pub fn read_scene(path: &std::path::Path) -> anyhow::Result<Scene> {
     Scene::from_json(&text).map_err(|e| input(format!("{}: {e}", path.display())))
 }
 
+/// What one `impact run` computed: the title of its summary, the outcome
+/// with its wall time, and the wall history (recorded only when asked).
+pub struct Computed {
+    pub title: String,
+    pub outcome: Timed<impact_model::Outcome>,
+    pub wall: Vec<WallSample>,
+}
+
 pub fn run(a: RunArgs) -> anyhow::Result<()> {
-    if a.subject.scene.is_some() && a.viscosity.given() {
+    let Computed {
+        title,
+        outcome,
+        wall,
+    } = compute(&a, None)?;
+    if let Some(path) = &a.wall_trace {
+        let lines = wall.iter().map(|s| WallTraceLine {
+            time: Plain(s.time),
+            strain: Plain(s.strain),
+            height: Plain(s.height),
+            velocity: Plain(s.velocity),
+        });
+        write_atomically(path, |w| impact_output::write_csv(w, lines))?;
+    }
+    let mut stdout = std::io::stdout().lock();
+    if a.json {
+        writeln!(stdout, "{}", serde_json::to_string(&outcome)?)?;
+    } else {
+        write!(stdout, "{}", summary(&title, &outcome))?;
+    }
+    Ok(())
+}
+
+/// Runs what `a` asks for, on `given` instead of the scene `a` names when
+/// the caller already holds one (the explorer: a scene sent over HTTP,
+/// never a file). Writes nothing.
+pub fn compute(a: &RunArgs, given: Option<Scene>) -> anyhow::Result<Computed> {
+    if (a.subject.scene.is_some() || given.is_some()) && a.viscosity.given() {
         return Err(input(
             "--tau1/--tau2/--e1/--e2 apply to --x/--alpha only: give viscosity in the scene file",
         ));
     }
-    let (scene, bilayer, name) = a.subject.load()?;
+    let (scene, bilayer, name) = match given {
+        Some(scene) => (scene, None, "(explorer)".to_string()),
+        None => a.subject.load()?,
+    };
     let (scene, title) = match bilayer {
         Some(b) => (
             a.viscosity.viscosity().scene(b),
@@ -138,22 +176,11 @@ pub fn run(a: RunArgs) -> anyhow::Result<()> {
             (o, Vec::new())
         }
     };
-    if let Some(path) = &a.wall_trace {
-        let lines = wall.iter().map(|s| WallTraceLine {
-            time: Plain(s.time),
-            strain: Plain(s.strain),
-            height: Plain(s.height),
-            velocity: Plain(s.velocity),
-        });
-        write_atomically(path, |w| impact_output::write_csv(w, lines))?;
-    }
-    let mut stdout = std::io::stdout().lock();
-    if a.json {
-        writeln!(stdout, "{}", serde_json::to_string(&outcome)?)?;
-    } else {
-        write!(stdout, "{}", summary(&title, &outcome))?;
-    }
-    Ok(())
+    Ok(Computed {
+        title,
+        outcome,
+        wall,
+    })
 }
 
 /// An exact-engine failure as the command line reports it: settings are

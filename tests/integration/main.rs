@@ -7,6 +7,7 @@ mod compare;
 mod cost;
 mod diagram;
 mod docs;
+mod explore;
 mod run;
 mod support;
 mod sweep;

@@ -1,0 +1,95 @@
+//! `impact explore`: the map, any impact's wave paths and a scene editor in
+//! the browser, served from a local HTTP server (axum on tokio).
+//!
+//! The explorer is a second front end to the same commands, not a second
+//! implementation: every API request is turned into the words of an
+//! `impact run` or `impact diagram` command, parsed by the same clap
+//! structs and run by the same code (`run::compute`, `diagram::build`), so
+//! its JSON and its one-line error messages are the command line's by
+//! construction, and "copy the command" shows exactly what was run. A scene
+//! sent in a request body stands in for the scene file; requests never
+//! touch the file system. Heavy work runs on tokio's blocking pool (the
+//! engines' own parallel loops on rayon's), so a slow chain never holds up
+//! the map, and each request's work is capped (`api::Caps`).
+
+mod api;
+mod map;
+
+use crate::args::ExploreArgs;
+use crate::input;
+use anyhow::Context;
+use std::net::SocketAddr;
+
+/// The page and its script and style, served from the binary: nothing is
+/// fetched from anywhere else.
+pub const INDEX_HTML: &str = include_str!("page/index.html");
+/// The page's script.
+pub const APP_JS: &str = include_str!("page/app.js");
+/// The page's style.
+pub const APP_CSS: &str = include_str!("page/app.css");
+
+pub fn explore(a: ExploreArgs) -> anyhow::Result<()> {
+    let scene = match &a.scene {
+        Some(path) => {
+            let scene = crate::run::read_scene(path)?;
+            scene
+                .validate()
+                .map_err(|e| input(format!("{}: {e}", path.display())))?;
+            let text = std::fs::read_to_string(path)
+                .with_context(|| format!("cannot read {}", path.display()))?;
+            Some(serde_json::from_str::<serde_json::Value>(&text)?)
+        }
+        None => None,
+    };
+    if !a.bind.is_loopback() {
+        eprintln!(
+            "warning: --bind {} serves the explorer beyond this machine: anyone who can reach it can run simulations on it",
+            a.bind
+        );
+    }
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .enable_all()
+        .build()
+        .context("cannot start the server's runtime")?;
+    runtime.block_on(async move {
+        let listener = tokio::net::TcpListener::bind(SocketAddr::new(a.bind, a.port))
+            .await
+            .map_err(|e| {
+                input(format!(
+                    "--port: cannot listen on {}:{} ({e}); choose another with --port, or 0 for any free port",
+                    a.bind, a.port
+                ))
+            })?;
+        let address = listener.local_addr()?;
+        let host = if address.ip().is_unspecified() {
+            "127.0.0.1".to_string()
+        } else {
+            address.ip().to_string()
+        };
+        let url = format!("http://{host}:{}/", address.port());
+        println!("impact explore: {url}  (Ctrl-C stops the server)");
+        if a.open {
+            open_browser(&url);
+        }
+        axum::serve(listener, api::router(api::App::new(scene)))
+            .with_graceful_shutdown(async {
+                let _ = tokio::signal::ctrl_c().await;
+                eprintln!("impact explore: stopping");
+            })
+            .await
+            .context("the server failed")
+    })
+}
+
+/// Opens `url` in the user's browser (`xdg-open`, `open` on macOS); a
+/// machine without one only loses the convenience.
+fn open_browser(url: &str) {
+    let opener = if cfg!(target_os = "macos") {
+        "open"
+    } else {
+        "xdg-open"
+    };
+    if std::process::Command::new(opener).arg(url).spawn().is_err() {
+        eprintln!("warning: --open: could not start {opener}; open {url} by hand");
+    }
+}
