@@ -69,15 +69,17 @@ pub fn figure(dir: &std::path::Path, stem: &str, svg: &str) -> Result<String, cr
 }
 
 /// Writes `stem.csv` into `dir`: the comma-separated column names of
-/// `header`, then rows of numbers (empty cells where not finite).
+/// `header`, then rows of numbers (empty cells where not finite). The rows
+/// come as any iterator, so a figure maps its points straight into them.
 pub fn csv(
     dir: &std::path::Path,
     stem: &str,
     header: &str,
-    rows: &[Vec<f64>],
+    rows: impl IntoIterator<Item = Vec<f64>>,
 ) -> Result<String, crate::PaperError> {
     let columns: Vec<&str> = header.split(',').collect();
-    let text = impact_output::numbers_csv(&columns, rows)?;
+    let rows: Vec<Vec<f64>> = rows.into_iter().collect();
+    let text = impact_output::numbers_csv(&columns, &rows)?;
     let name = format!("{stem}.csv");
     std::fs::write(dir.join(&name), text)?;
     Ok(name)
