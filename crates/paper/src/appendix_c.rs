@@ -1,7 +1,7 @@
 //! Appendix C and Fig. 13: the rigid-bottom model (`alpha -> 0`), its
 //! bounce sequence, and its `e(x)` against the exact engine at small `alpha`.
 
-use crate::claim::{Claim, Item, csv, figure};
+use crate::claim::{Claim, Item, csv, curve_csv, figure};
 use crate::{PaperError, Settings, exact_bilayer, try_par_map};
 use impact_model::Bilayer;
 use impact_model::numerics::exponential_fit;
@@ -52,12 +52,7 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
         "x,e_rigid_bottom,e_exact",
         compared.iter().map(|&(x, m, e)| vec![x, m, e]),
     )?;
-    let bounce_csv = csv(
-        dir,
-        "fig13b",
-        "t_over_tau,v_over_vb",
-        pts.iter().map(|&(t, v)| vec![t, v]),
-    )?;
+    let bounce_csv = curve_csv(dir, "fig13b", "t_over_tau,v_over_vb", &pts)?;
     let figures = vec![
         figure(
             dir,

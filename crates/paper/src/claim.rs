@@ -84,3 +84,14 @@ pub fn csv(
     std::fs::write(dir.join(&name), text)?;
     Ok(name)
 }
+
+/// Writes a curve of `(x, y)` points as the two-column `stem.csv` (see
+/// [`csv`]): the data file of every figure that draws one plain curve.
+pub fn curve_csv(
+    dir: &std::path::Path,
+    stem: &str,
+    header: &str,
+    points: &[(f64, f64)],
+) -> Result<String, crate::PaperError> {
+    csv(dir, stem, header, points.iter().map(|&(x, y)| vec![x, y]))
+}

@@ -1,7 +1,7 @@
 //! Fig. 11 (Appendix A): the chain's finite-size error for a homogeneous
 //! elastic rod, `1 - e` against `N`, with its power-law fit.
 
-use crate::claim::{Claim, Item, csv, figure};
+use crate::claim::{Claim, Item, curve_csv, figure};
 use crate::{PaperError, Settings, try_par_map};
 use impact_chain::{ChainConfig, simulate};
 use impact_model::numerics::power_fit;
@@ -33,12 +33,7 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
         .iter()
         .find(|e| e.0 == 50.0)
         .map_or(f64::NAN, |e| e.1);
-    let data = csv(
-        dir,
-        "fig11",
-        "masses,one_minus_e",
-        errors.iter().map(|&(n, e)| vec![n, e]),
-    )?;
+    let data = curve_csv(dir, "fig11", "masses,one_minus_e", &errors)?;
     let plot = LinePlot {
         title: "Fig. 11: 1 - e vs N (homogeneous elastic chain)".into(),
         x: Axis::fit(

@@ -3,7 +3,7 @@
 //! (c) the unloading time `t_eps` (from `eps0 = -v_b/2c` to takeoff) and
 //! `t_c` against `tau c / L`.
 
-use crate::claim::{Claim, Item, csv, figure};
+use crate::claim::{Claim, Item, csv, curve_csv, figure};
 use crate::{PaperError, try_par_map};
 use impact_chain::calibrate::homogeneous_rod;
 use impact_chain::{ChainConfig, ChainEngine, ChainRecord};
@@ -71,12 +71,7 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
         runs.iter()
             .map(|r| vec![r.tau, r.e, 1.0 - r.e, r.contact_time, r.unloading]),
     )?;
-    let trace_csv = csv(
-        dir,
-        "fig2b",
-        "t_c_over_l,eps0_c_over_vb",
-        trace.wall.iter().map(|&(t, e)| vec![t, e]),
-    )?;
+    let trace_csv = curve_csv(dir, "fig2b", "t_c_over_l,eps0_c_over_vb", &trace.wall)?;
     // fit at small tau c / L, where the paper states its law
     let small: Vec<(f64, f64)> = runs
         .iter()
