@@ -10,7 +10,7 @@ fn sweep_writes_one_row_per_point_in_grid_order() {
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
     let more = ["x", "alpha", "events", "elapsed_seconds"];
     for col in MEASURES.iter().chain(&more) {
-        assert!(header.contains(&col), "missing column {col}");
+        assert!(header.contains(col), "missing column {col}");
     }
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
     assert_eq!(rows.len(), 9 * 7);

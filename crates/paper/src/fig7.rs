@@ -68,7 +68,8 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
         };
     // panel (a) x_min, panel (b) e_min: each our minimum beside its formula
     type Column = fn(&(f64, f64, f64)) -> f64;
-    let panels: [(&str, &str, Column, fn(f64) -> f64); 2] = [
+    type Formula = fn(f64) -> f64;
+    let panels: [(&str, &str, Column, Formula); 2] = [
         ("a", "x_min", |m| m.1, theory::x_min),
         ("b", "e_min", |m| m.2, theory::e_min),
     ];
