@@ -32,10 +32,12 @@ resolve_impact() {
   [[ -x "$IMPACT" ]] || { echo "IMPACT=$IMPACT is not an executable" >&2; exit 2; }
 }
 
-# submit NAME: submits this script as the array (SLURM opens --output before
-# the task starts, so the log directory is made here, at submission).
+# submit NAME OUT: makes the output directory OUT, submits this script as the
+# array and exits: a run outside the array only submits. (SLURM opens --output
+# before the task starts, so the log directory is made here, at submission.)
 submit() {
-  local name=$1
+  local name=$1 out=$2
+  mkdir -p "$out"
   resolve_impact
   [[ "$SHARDS" =~ ^[1-9][0-9]*$ ]] || { echo "SHARDS must be a whole number >= 1 (got '$SHARDS')" >&2; exit 2; }
   mkdir -p "$LOGS"
@@ -45,4 +47,5 @@ submit() {
     --output="$LOGS/impact-$name-%a.log" --export=ALL,IMPACT="$IMPACT",SHARDS="$SHARDS")
   [[ -n "$PARTITION" ]] && args+=(--partition="$PARTITION")
   sbatch --parsable "${args[@]}" "$0"
+  exit 0
 }

@@ -16,9 +16,7 @@ set -euo pipefail
 if [[ -z "${SLURM_ARRAY_TASK_ID:-}" ]]; then
   # submission (SLURM runs a copy of this file, so only here is it beside its helper)
   source "$(dirname "$(readlink -f "$0")")/slurm-array.sh"
-  mkdir -p "$OUT"
-  submit sweep
-  exit 0
+  submit sweep "$OUT"
 fi
 # shellcheck disable=SC2086 # EXTRA is a list of flags
 exec "$IMPACT" sweep --x "$X" --alpha "$ALPHA" --engine "$ENGINE" --n "$N" --no-timing \

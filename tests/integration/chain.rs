@@ -204,19 +204,9 @@ fn a_viscous_run_extrapolates_to_the_continuum_by_default() {
     ];
     let v = json(&args);
     let x = &v["extrapolation"];
-    let sizes: Vec<u64> = x["sizes"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|n| n.as_u64().unwrap())
-        .collect();
+    let sizes: Vec<u64> = numbers(&x["sizes"]);
     assert_eq!(sizes, [250, 500, 1000]);
-    let values: Vec<f64> = x["values"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|e| e.as_f64().unwrap())
-        .collect();
+    let values: Vec<f64> = numbers(&x["values"]);
     assert_eq!(values[2], v["restitution"].as_f64().unwrap());
     let (value, error) = (x["value"].as_f64().unwrap(), x["error"].as_f64().unwrap());
     assert!(error > 0.0 && error < 1e-3, "{x}");

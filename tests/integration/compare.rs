@@ -11,6 +11,17 @@ fn ok(words: &str, rest: &[&str]) -> std::process::Output {
     out
 }
 
+/// The whole grid in one uninterrupted, unsharded run (`command_and_grid`,
+/// then `--out out`): what a sharded, merged or resumed run must equal.
+fn whole_run(command_and_grid: &str, out: &Path) {
+    ok(command_and_grid, &["--out", out.to_str().unwrap()]);
+}
+
+/// Two files are the same byte for byte.
+fn same_bytes(a: &Path, b: &Path) {
+    assert_eq!(std::fs::read(a).unwrap(), std::fs::read(b).unwrap());
+}
+
 fn report(dir: &Path) -> Value {
     serde_json::from_str(&std::fs::read_to_string(dir.join("report.json")).unwrap()).unwrap()
 }
@@ -161,10 +172,7 @@ fn sharded_and_merged_compare_equals_unsharded() {
     let dir = scratch("cmp-shards");
     let grid = "--x 0.2:0.8:0.3 --alpha 0.1:0.7:0.3 --n 150 --no-timing";
     let whole = dir.join("whole");
-    ok(
-        &format!("compare {grid}"),
-        &["--out", whole.to_str().unwrap()],
-    );
+    whole_run(&format!("compare {grid}"), &whole);
     let parts = dir.join("parts");
     for s in ["1/3", "2/3", "3/3"] {
         ok(
@@ -206,10 +214,7 @@ fn sharded_and_merged_sweep_equals_unsharded() {
     let dir = scratch("sweep-shards");
     let grid = "--x 0.05:0.95:0.1 --alpha 0.05:0.95:0.15 --no-timing";
     let whole = dir.join("whole.csv");
-    ok(
-        &format!("sweep {grid}"),
-        &["--out", whole.to_str().unwrap()],
-    );
+    whole_run(&format!("sweep {grid}"), &whole);
     let mut journals = Vec::new();
     for i in 1..=2 {
         let j = dir.join(format!("part{i}.jsonl"));
@@ -230,10 +235,7 @@ fn sharded_and_merged_sweep_equals_unsharded() {
             merged.to_str().unwrap(),
         ],
     );
-    assert_eq!(
-        std::fs::read(&whole).unwrap(),
-        std::fs::read(&merged).unwrap()
-    );
+    same_bytes(&whole, &merged);
 }
 
 /// A kill can land anywhere, including in the middle of a line: a resumed run
@@ -243,10 +245,7 @@ fn killed_then_resumed_equals_uninterrupted() {
     let dir = scratch("cmp-resume");
     let grid = "--x 0.2:0.8:0.3 --alpha 0.1:0.7:0.3 --n 150 --no-timing";
     let whole = dir.join("whole");
-    ok(
-        &format!("compare {grid}"),
-        &["--out", whole.to_str().unwrap()],
-    );
+    whole_run(&format!("compare {grid}"), &whole);
     // the journal as a kill would leave it: 4 of 9 points and a torn fifth line
     let cut = dir.join("cut");
     std::fs::create_dir_all(&cut).unwrap();
@@ -313,14 +312,8 @@ fn a_real_kill_mid_run_resumes_cleanly() {
         &[journal.to_str().unwrap(), "--out", merged.to_str().unwrap()],
     );
     let whole = dir.join("whole.csv");
-    ok(
-        &format!("sweep {grid}"),
-        &["--out", whole.to_str().unwrap()],
-    );
-    assert_eq!(
-        std::fs::read(&whole).unwrap(),
-        std::fs::read(&merged).unwrap()
-    );
+    whole_run(&format!("sweep {grid}"), &whole);
+    same_bytes(&whole, &merged);
 }
 
 #[test]

@@ -29,6 +29,23 @@ pub fn scratch(name: &str) -> PathBuf {
     dir
 }
 
+/// A JSON array of numbers as a vector; anything else fails the test.
+pub fn numbers<T: serde::de::DeserializeOwned>(v: &serde_json::Value) -> Vec<T> {
+    serde_json::from_value(v.clone())
+        .unwrap_or_else(|e| panic!("not an array of numbers: {v}: {e}"))
+}
+
+/// The measures of one impact: `run --json` keys and `sweep` columns carry
+/// them under the same names, so the two tests check one list.
+pub const MEASURES: [&str; 6] = [
+    "restitution",
+    "contact_time",
+    "reduced_contact_time",
+    "n1",
+    "bounces",
+    "separations",
+];
+
 pub fn files_in(dir: &Path) -> Vec<String> {
     let mut v: Vec<String> = std::fs::read_dir(dir)
         .unwrap()

@@ -61,20 +61,16 @@ impl CostReport {
             .iter()
             .filter(|c| c.kind == ChainKind::Elastic && c.study == ChainStudy::Masses)
             .collect();
-        let chain_time_exponent = power_fit(
-            &n_study
+        // how a measure of the elastic N study grows with N (power-law exponent)
+        let growth_in_n = |measure: fn(&ChainCost) -> f64| {
+            let pts: Vec<(f64, f64)> = n_study
                 .iter()
-                .map(|c| (c.masses as f64, c.seconds))
-                .collect::<Vec<_>>(),
-        )
-        .exponent;
-        let chain_work_exponent = power_fit(
-            &n_study
-                .iter()
-                .map(|c| (c.masses as f64, c.mass_steps))
-                .collect::<Vec<_>>(),
-        )
-        .exponent;
+                .map(|c| (c.masses as f64, measure(c)))
+                .collect();
+            power_fit(&pts).exponent
+        };
+        let chain_time_exponent = growth_in_n(|c| c.seconds);
+        let chain_work_exponent = growth_in_n(|c| c.mass_steps);
         let exact_pts: Vec<(f64, f64, String)> = exact
             .iter()
             .filter(|e| e.point == point)
@@ -137,8 +133,8 @@ pub fn write_report(target: &Path, r: &CostReport) -> Result<(), CostError> {
     table(dir, "exact.csv", &r.exact)?;
     table(dir, "chain.csv", &r.chain)?;
     table(dir, "growth.csv", &r.growth)?;
-    let blue = Colour(33, 102, 172);
-    let red = Colour(178, 24, 43);
+    let blue = Colour::BLUE;
+    let red = Colour::RED;
     let orange = Colour(230, 150, 30);
     let green = Colour(26, 152, 80);
     let grey = Colour(90, 90, 90);
@@ -164,31 +160,29 @@ pub fn write_report(target: &Path, r: &CostReport) -> Result<(), CostError> {
                 .map(|c| (c.seconds, c.restitution_error.max(ERROR_FLOOR))),
         )
         .collect();
-    let mut chain_n = Series::markers(
-        "chain, N varied (elastic)",
-        mine(&|c| c.kind == ChainKind::Elastic && c.study == ChainStudy::Masses),
-        red,
-    );
-    chain_n.line = true;
-    let mut chain_dt = Series::markers(
-        "chain, dt varied (elastic)",
-        mine(&|c| c.kind == ChainKind::Elastic && c.study == ChainStudy::TimeStep),
-        orange,
-    );
-    chain_dt.marker = Marker::Square;
-    let mut viscous = Series::markers(
-        "chain, N varied (viscous)",
-        mine(&|c| c.kind == ChainKind::Viscous && c.study == ChainStudy::Masses),
-        green,
-    );
-    viscous.line = true;
-    let mut extrapolated = Series::markers(
-        "chain, extrapolated (viscous)",
-        mine(&|c| c.kind == ChainKind::Viscous && c.study == ChainStudy::Extrapolated),
-        Colour(118, 42, 131),
-    );
-    extrapolated.line = true;
-    extrapolated.marker = Marker::Square;
+    // one series per chain study, named and styled by what it varied: the N
+    // studies are convergence paths (joined), the dt study a scatter, and
+    // squares set apart what is not a plain run at the paper's step
+    let purple = Colour(118, 42, 131);
+    let chain_series = [
+        (ChainKind::Elastic, ChainStudy::Masses, red),
+        (ChainKind::Elastic, ChainStudy::TimeStep, orange),
+        (ChainKind::Viscous, ChainStudy::Masses, green),
+        (ChainKind::Viscous, ChainStudy::Extrapolated, purple),
+    ]
+    .map(|(kind, study, colour)| {
+        let (varied, line, marker) = match study {
+            ChainStudy::Masses => ("N varied", true, Marker::Circle),
+            ChainStudy::TimeStep => ("dt varied", false, Marker::Square),
+            ChainStudy::Extrapolated => ("extrapolated", true, Marker::Square),
+        };
+        let points = mine(&|c| c.kind == kind && c.study == study);
+        Series {
+            line,
+            marker,
+            ..Series::markers(&format!("chain, {varied} ({kind})"), points, colour)
+        }
+    });
     let pareto = LinePlot {
         title: format!("Error in e vs time per impact, {}", r.point),
         x: Axis::fit(
@@ -203,12 +197,14 @@ pub fn write_report(target: &Path, r: &CostReport) -> Result<(), CostError> {
             "|e - e_ref| (floor 1e-16)",
             0.1,
         ),
-        series: vec![
-            Series::markers("exact engine (tolerances)", exact_pts.clone(), blue),
-            chain_n,
-            chain_dt,
-            viscous,
-            extrapolated,
+        series: [Series::markers(
+            "exact engine (tolerances)",
+            exact_pts.clone(),
+            blue,
+        )]
+        .into_iter()
+        .chain(chain_series)
+        .chain([
             Series::line(
                 "chain's Pareto front",
                 r.pareto_chain.iter().map(|p| (p.0, p.1)).collect(),
@@ -221,7 +217,8 @@ pub fn write_report(target: &Path, r: &CostReport) -> Result<(), CostError> {
                 blue,
             )
             .dashed(),
-        ],
+        ])
+        .collect(),
     };
     write_svg_and_png(&dir.join("pareto"), &pareto.to_svg())?;
     let points: Vec<String> = {

@@ -114,17 +114,29 @@ fn segment_fraction(a: f64, b: f64, tau: f64) -> f64 {
     }
 }
 
+/// The first table segment `(a, b)` that `holds` the looked-up value, or
+/// `None` outside the table or for a value that is not finite: the lookup
+/// both directions of the calibration share, so that they cannot disagree
+/// on which segment a value falls in.
+fn segment(
+    law: WallContact,
+    value: f64,
+    holds: impl Fn(&[(f64, f64)]) -> bool,
+) -> Option<((f64, f64), (f64, f64))> {
+    let t = table(law);
+    if !value.is_finite() {
+        return None;
+    }
+    let i = t.windows(2).position(holds)?;
+    Some((t[i], t[i + 1]))
+}
+
 /// Restitution of a homogeneous Kelvin-Voigt rod with this `tau c / L`, or
 /// `None` outside the table. Piecewise linear in `(ln(tau c / L), e)`.
 pub fn restitution(law: WallContact, tau_c_over_l: f64) -> Option<f64> {
-    let t = table(law);
-    if !tau_c_over_l.is_finite() {
-        return None;
-    }
-    let i = t
-        .windows(2)
-        .position(|w| w[0].0 <= tau_c_over_l && tau_c_over_l <= w[1].0)?;
-    let (a, b) = (t[i], t[i + 1]);
+    let (a, b) = segment(law, tau_c_over_l, |w| {
+        w[0].0 <= tau_c_over_l && tau_c_over_l <= w[1].0
+    })?;
     let s = segment_fraction(a.0, b.0, tau_c_over_l);
     Some(a.1 + s * (b.1 - a.1))
 }
@@ -132,14 +144,9 @@ pub fn restitution(law: WallContact, tau_c_over_l: f64) -> Option<f64> {
 /// The `tau c / L` that gives this restitution, or `None` outside the table:
 /// the exact inverse of [`restitution`].
 pub fn tau_c_over_l(law: WallContact, restitution: f64) -> Option<f64> {
-    let t = table(law);
-    if !restitution.is_finite() {
-        return None;
-    }
-    let i = t
-        .windows(2)
-        .position(|w| w[1].1 <= restitution && restitution <= w[0].1)?;
-    let (a, b) = (t[i], t[i + 1]);
+    let (a, b) = segment(law, restitution, |w| {
+        w[1].1 <= restitution && restitution <= w[0].1
+    })?;
     let s = if a.1 != b.1 {
         (restitution - a.1) / (b.1 - a.1)
     } else {

@@ -1,13 +1,12 @@
 //! Appendix C and Fig. 13: the rigid-bottom model (`alpha -> 0`), its
 //! bounce sequence, and its `e(x)` against the exact engine at small `alpha`.
 
-use crate::claim::{Claim, Item, csv, figure};
-use crate::{PaperError, Settings, exact_bilayer};
+use crate::claim::{Claim, Item, csv, curve_csv, figure};
+use crate::{PaperError, Settings, exact_bilayer, try_par_map};
 use impact_model::Bilayer;
 use impact_model::numerics::exponential_fit;
 use impact_model::rigid_bottom::{height, rigid_bottom};
 use impact_plot::{Axis, Colour, LinePlot, Series};
-use impact_study::par_map;
 use std::path::Path;
 
 /// The composition whose bounce sequence Fig. 13 shows (many bounces).
@@ -40,30 +39,20 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
     let k = -1.0 / exponential_fit(&pts).slope;
     // e(x): model against the exact engine at small alpha
     let xs: Vec<f64> = (1..20).map(|i| f64::from(i) * 0.05).collect();
-    let compared: Vec<(f64, f64, f64)> = par_map(&xs, &(), |&x| {
+    let compared: Vec<(f64, f64, f64)> = try_par_map(&xs, |&x| {
         let exact = exact_bilayer(Bilayer {
             x,
             alpha: s.appendix_alpha,
         })?;
         Ok((x, rigid_bottom(x).restitution, exact.restitution))
-    })
-    .into_iter()
-    .collect::<Result<_, PaperError>>()?;
+    })?;
     let data = csv(
         dir,
         "appendix-c",
         "x,e_rigid_bottom,e_exact",
-        &compared
-            .iter()
-            .map(|&(x, m, e)| vec![x, m, e])
-            .collect::<Vec<_>>(),
+        compared.iter().map(|&(x, m, e)| vec![x, m, e]),
     )?;
-    let bounce_csv = csv(
-        dir,
-        "fig13b",
-        "t_over_tau,v_over_vb",
-        &pts.iter().map(|&(t, v)| vec![t, v]).collect::<Vec<_>>(),
-    )?;
+    let bounce_csv = curve_csv(dir, "fig13b", "t_over_tau,v_over_vb", &pts)?;
     let figures = vec![
         figure(
             dir,
@@ -83,7 +72,7 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
                     "(y1 - L1/2) / (v_b tau_relax)",
                     0.05,
                 ),
-                series: vec![Series::line("Eq. C2", path.clone(), Colour(33, 102, 172))],
+                series: vec![Series::line("Eq. C2", path.clone(), Colour::BLUE)],
             }
             .to_svg(),
         )?,
@@ -99,16 +88,16 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
                 ),
                 y: Axis::log(pts.last().map_or(1e-3, |p| p.1) * 0.5, 1.5, "v_1,i / v_b"),
                 series: vec![
-                    Series::markers("recursion", pts.clone(), Colour(20, 20, 20)),
+                    Series::markers("recursion", pts.clone(), Colour::INK),
                     Series::line(
                         &format!("fit exp(-t / {k:.2} tau)"),
                         pts.iter().map(|&(t, _)| (t, (-t / k).exp())).collect(),
-                        Colour(33, 102, 172),
+                        Colour::BLUE,
                     ),
                     Series::line(
                         "paper: exp(-t / 3 tau)",
                         pts.iter().map(|&(t, _)| (t, (-t / 3.0).exp())).collect(),
-                        Colour(178, 24, 43),
+                        Colour::RED,
                     )
                     .dashed(),
                 ],
@@ -129,12 +118,12 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
                     Series::line(
                         "rigid-bottom model",
                         compared.iter().map(|c| (c.0, c.1)).collect(),
-                        Colour(178, 24, 43),
+                        Colour::RED,
                     ),
                     Series::markers(
                         &format!("exact, alpha = {}", s.appendix_alpha),
                         compared.iter().map(|c| (c.0, c.2)).collect(),
-                        Colour(33, 102, 172),
+                        Colour::BLUE,
                     ),
                     Series::line("e = x", vec![(0.0, 0.0), (1.0, 1.0)], Colour(120, 120, 120))
                         .dashed(),

@@ -69,16 +69,29 @@ pub fn figure(dir: &std::path::Path, stem: &str, svg: &str) -> Result<String, cr
 }
 
 /// Writes `stem.csv` into `dir`: the comma-separated column names of
-/// `header`, then rows of numbers (empty cells where not finite).
+/// `header`, then rows of numbers (empty cells where not finite). The rows
+/// come as any iterator, so a figure maps its points straight into them.
 pub fn csv(
     dir: &std::path::Path,
     stem: &str,
     header: &str,
-    rows: &[Vec<f64>],
+    rows: impl IntoIterator<Item = Vec<f64>>,
 ) -> Result<String, crate::PaperError> {
     let columns: Vec<&str> = header.split(',').collect();
-    let text = impact_output::numbers_csv(&columns, rows)?;
+    let rows: Vec<Vec<f64>> = rows.into_iter().collect();
+    let text = impact_output::numbers_csv(&columns, &rows)?;
     let name = format!("{stem}.csv");
     std::fs::write(dir.join(&name), text)?;
     Ok(name)
+}
+
+/// Writes a curve of `(x, y)` points as the two-column `stem.csv` (see
+/// [`csv`]): the data file of every figure that draws one plain curve.
+pub fn curve_csv(
+    dir: &std::path::Path,
+    stem: &str,
+    header: &str,
+    points: &[(f64, f64)],
+) -> Result<String, crate::PaperError> {
+    csv(dir, stem, header, points.iter().map(|&(x, y)| vec![x, y]))
 }

@@ -1,13 +1,12 @@
 //! Fig. 11 (Appendix A): the chain's finite-size error for a homogeneous
 //! elastic rod, `1 - e` against `N`, with its power-law fit.
 
-use crate::claim::{Claim, Item, csv, figure};
-use crate::{PaperError, Settings};
+use crate::claim::{Claim, Item, curve_csv, figure};
+use crate::{PaperError, Settings, try_par_map};
 use impact_chain::{ChainConfig, simulate};
 use impact_model::numerics::power_fit;
 use impact_model::{Layer, Scene};
 use impact_plot::{Axis, Colour, LinePlot, Series};
-use impact_study::par_map;
 use std::path::Path;
 
 pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
@@ -17,7 +16,7 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
         wall_contact: None,
     }
     .validate()?;
-    let errors: Vec<(f64, f64)> = par_map(&s.fig11_sizes, &(), |&n| {
+    let errors: Vec<(f64, f64)> = try_par_map(&s.fig11_sizes, |&n| {
         simulate(
             &rod,
             &ChainConfig {
@@ -27,21 +26,14 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
         )
         .map(|o| (n as f64, 1.0 - o.restitution))
         .map_err(PaperError::from)
-    })
-    .into_iter()
-    .collect::<Result<_, _>>()?;
+    })?;
     let fit = power_fit(&errors);
     let (p, c) = (fit.exponent, fit.prefactor());
     let at50 = errors
         .iter()
         .find(|e| e.0 == 50.0)
         .map_or(f64::NAN, |e| e.1);
-    let data = csv(
-        dir,
-        "fig11",
-        "masses,one_minus_e",
-        &errors.iter().map(|&(n, e)| vec![n, e]).collect::<Vec<_>>(),
-    )?;
+    let data = curve_csv(dir, "fig11", "masses,one_minus_e", &errors)?;
     let plot = LinePlot {
         title: "Fig. 11: 1 - e vs N (homogeneous elastic chain)".into(),
         x: Axis::fit(
@@ -57,11 +49,11 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
             0.1,
         ),
         series: vec![
-            Series::markers("chain", errors.clone(), Colour(33, 102, 172)),
+            Series::markers("chain", errors.clone(), Colour::BLUE),
             Series::line(
                 &format!("fit {c:.3} N^{p:.3}"),
                 errors.iter().map(|&(n, _)| (n, c * n.powf(p))).collect(),
-                Colour(178, 24, 43),
+                Colour::RED,
             ),
         ],
     };

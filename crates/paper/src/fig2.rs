@@ -3,14 +3,13 @@
 //! (c) the unloading time `t_eps` (from `eps0 = -v_b/2c` to takeoff) and
 //! `t_c` against `tau c / L`.
 
-use crate::PaperError;
-use crate::claim::{Claim, Item, csv, figure};
+use crate::claim::{Claim, Item, csv, curve_csv, figure};
+use crate::{PaperError, try_par_map};
 use impact_chain::calibrate::homogeneous_rod;
 use impact_chain::{ChainConfig, ChainEngine, ChainRecord};
 use impact_model::WallContact;
 use impact_model::numerics::power_fit;
 use impact_plot::{Axis, Colour, LinePlot, Series};
-use impact_study::par_map;
 use std::path::Path;
 
 /// One run: `(tau c / L, e, t_c, t_eps, wall trace)`, in units `L = c = v_b = 1`.
@@ -58,36 +57,21 @@ fn run_one(tau: f64, masses: usize, law: WallContact) -> Result<Run, PaperError>
 pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
     // the paper's wall law (Sec. III) is the model; the unilateral wall is
     // run beside it, because the sentence on e(tau c/L = 1) depends on it
-    let runs: Vec<Run> = par_map(&s.fig2_tau, &(), |&t| {
+    let runs: Vec<Run> = try_par_map(&s.fig2_tau, |&t| {
         run_one(t, s.fig2_masses, WallContact::Paper)
-    })
-    .into_iter()
-    .collect::<Result<_, _>>()?;
-    let unilateral: Vec<Run> = par_map(&s.fig2_tau, &(), |&t| {
+    })?;
+    let unilateral: Vec<Run> = try_par_map(&s.fig2_tau, |&t| {
         run_one(t, s.fig2_masses, WallContact::Unilateral)
-    })
-    .into_iter()
-    .collect::<Result<_, _>>()?;
+    })?;
     let trace = run_one(0.1, s.fig2_masses, WallContact::Paper)?;
     let data = csv(
         dir,
         "fig2",
         "tau_c_over_l,restitution,one_minus_e,contact_time_c_over_l,t_eps_c_over_l",
-        &runs
-            .iter()
-            .map(|r| vec![r.tau, r.e, 1.0 - r.e, r.contact_time, r.unloading])
-            .collect::<Vec<_>>(),
+        runs.iter()
+            .map(|r| vec![r.tau, r.e, 1.0 - r.e, r.contact_time, r.unloading]),
     )?;
-    let trace_csv = csv(
-        dir,
-        "fig2b",
-        "t_c_over_l,eps0_c_over_vb",
-        &trace
-            .wall
-            .iter()
-            .map(|&(t, e)| vec![t, e])
-            .collect::<Vec<_>>(),
-    )?;
+    let trace_csv = curve_csv(dir, "fig2b", "t_c_over_l,eps0_c_over_vb", &trace.wall)?;
     // fit at small tau c / L, where the paper states its law
     let small: Vec<(f64, f64)> = runs
         .iter()
@@ -139,12 +123,12 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
             Series::markers(
                 "chain, paper's wall",
                 runs.iter().map(|r| (r.tau, 1.0 - r.e)).collect(),
-                Colour(33, 102, 172),
+                Colour::BLUE,
             ),
             Series::markers(
                 "chain, unilateral wall",
                 unilateral.iter().map(|r| (r.tau, 1.0 - r.e)).collect(),
-                Colour(178, 24, 43),
+                Colour::RED,
             ),
             Series::line(
                 &format!("fit {prefactor:.2} (tau c/L)^{p:.3}"),
@@ -171,7 +155,7 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
                 .filter(|(t, _)| *t <= trace.contact_time * 1.1)
                 .copied()
                 .collect(),
-            Colour(178, 24, 43),
+            Colour::RED,
         )],
     };
     let fig_c = LinePlot {
@@ -187,12 +171,12 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
             Series::markers(
                 "t_eps c/L",
                 runs.iter().map(|r| (r.tau, r.unloading)).collect(),
-                Colour(33, 102, 172),
+                Colour::BLUE,
             ),
             Series::markers(
                 "t_c c/L",
                 runs.iter().map(|r| (r.tau, r.contact_time)).collect(),
-                Colour(178, 24, 43),
+                Colour::RED,
             ),
             Series::line(
                 "paper: t_eps ~ (tau L/c)^(1/2)",

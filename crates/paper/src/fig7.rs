@@ -1,16 +1,15 @@
 //! Fig. 7: `x_min` and `e_min` against `alpha`, with Eqs. 12 and 14.
 
 use crate::claim::{Claim, Item, csv, figure};
-use crate::{PaperError, Settings, exact_bilayer};
+use crate::{PaperError, Settings, exact_bilayer, try_par_map};
 use impact_model::{Bilayer, theory};
 use impact_plot::{Axis, Colour, LinePlot, Series};
-use impact_study::par_map;
 use std::path::Path;
 
 pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
     let alphas = Settings::unit_steps(s.fig7_alpha_step);
     let xs = Settings::unit_steps(s.fig7_x_step);
-    let minima: Vec<(f64, f64, f64)> = par_map(&alphas, &(), |&a| {
+    let minima: Vec<(f64, f64, f64)> = try_par_map(&alphas, |&a| {
         let mut best = (f64::INFINITY, 0.0);
         for &x in &xs {
             let e = exact_bilayer(Bilayer { x, alpha: a })?.restitution;
@@ -19,17 +18,14 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
             }
         }
         Ok((a, best.1, best.0))
-    })
-    .into_iter()
-    .collect::<Result<_, PaperError>>()?;
+    })?;
     let data = csv(
         dir,
         "fig7",
         "alpha,x_min,e_min,x_min_eq12,e_min_eq14",
-        &minima
+        minima
             .iter()
-            .map(|&(a, x, e)| vec![a, x, e, theory::x_min(a), theory::e_min(a)])
-            .collect::<Vec<_>>(),
+            .map(|&(a, x, e)| vec![a, x, e, theory::x_min(a), theory::e_min(a)]),
     )?;
     // central region, away from alpha = 0.5 where R12 = 0 and e(x) is flat,
     // and below 0.8, where Eq. 11 stops holding for x > x_1 (engine tests)
@@ -66,38 +62,30 @@ pub fn run(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
                 0.05,
             ),
             series: vec![
-                Series::markers("exact engine", ours, Colour(33, 102, 172)),
-                Series::line(
-                    "Eq. 12 / 14 (0.1 <= alpha <= 0.8)",
-                    formula,
-                    Colour(178, 24, 43),
-                ),
+                Series::markers("exact engine", ours, Colour::BLUE),
+                Series::line("Eq. 12 / 14 (0.1 <= alpha <= 0.8)", formula, Colour::RED),
             ],
         };
-    let figures = vec![
-        figure(
-            dir,
-            "fig7a",
-            &plot(
-                "Fig. 7(a): x_min vs alpha",
-                "x_min",
-                minima.iter().map(|m| (m.0, m.1)).collect(),
-                eq.iter().map(|&a| (a, theory::x_min(a))).collect(),
-            )
-            .to_svg(),
-        )?,
-        figure(
-            dir,
-            "fig7b",
-            &plot(
-                "Fig. 7(b): e_min vs alpha",
-                "e_min",
-                minima.iter().map(|m| (m.0, m.2)).collect(),
-                eq.iter().map(|&a| (a, theory::e_min(a))).collect(),
-            )
-            .to_svg(),
-        )?,
+    // panel (a) x_min, panel (b) e_min: each our minimum beside its formula
+    type Column = fn(&(f64, f64, f64)) -> f64;
+    type Formula = fn(f64) -> f64;
+    let panels: [(&str, &str, Column, Formula); 2] = [
+        ("a", "x_min", |m| m.1, theory::x_min),
+        ("b", "e_min", |m| m.2, theory::e_min),
     ];
+    let figures = panels
+        .into_iter()
+        .map(|(panel, label, ours, formula)| {
+            let svg = plot(
+                &format!("Fig. 7({panel}): {label} vs alpha"),
+                label,
+                minima.iter().map(|m| (m.0, ours(m))).collect(),
+                eq.iter().map(|&a| (a, formula(a))).collect(),
+            )
+            .to_svg();
+            figure(dir, &format!("fig7{panel}"), &svg)
+        })
+        .collect::<Result<Vec<_>, _>>()?;
     let mut claims = vec![
         Claim::new(
             "Eq. 12: x_min = x_1 in the central region (0.1 <= alpha <= 0.78)",

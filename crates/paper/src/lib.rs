@@ -62,6 +62,18 @@ fn exact_bilayer(b: impact_model::Bilayer) -> Result<impact_model::Outcome, Pape
     )?)
 }
 
+/// Runs `work` on every item in parallel and keeps the order; the first
+/// failure fails the whole figure, since a curve with a hole in it would
+/// misreport the paper. No progress bar: the figure's label is the progress.
+fn try_par_map<P: Sync, T: Send>(
+    items: &[P],
+    work: impl Fn(&P) -> Result<T, PaperError> + Sync,
+) -> Result<Vec<T>, PaperError> {
+    impact_study::par_map(items, &(), work)
+        .into_iter()
+        .collect()
+}
+
 /// One figure group: writes its files into the directory, returns its item.
 type Step = fn(&Path, &Settings) -> Result<Item, PaperError>;
 

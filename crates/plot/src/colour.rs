@@ -9,6 +9,15 @@ impl Colour {
     pub const WHITE: Colour = Colour(255, 255, 255);
     /// Light grey: missing values (NaN cells, unknown categories).
     pub const GREY: Colour = Colour(200, 200, 200);
+    /// Red: the positive end of the diverging map (compression, when it
+    /// shows strain). Named because every figure reuses it, so that a curve
+    /// and the strain map it sits beside speak the same colours.
+    pub const RED: Colour = Colour(178, 24, 43);
+    /// Blue: the negative end of the diverging map (tension), reused by the
+    /// figures for the same reason as [`Colour::RED`].
+    pub const BLUE: Colour = Colour(33, 102, 172);
+    /// Near-black: marks and lines that must read as "the data itself".
+    pub const INK: Colour = Colour(20, 20, 20);
 
     /// `#rrggbb`.
     pub fn hex(self) -> String {
@@ -51,9 +60,9 @@ impl Colourmap {
                 let m = min.abs().max(max.abs()).max(f64::MIN_POSITIVE);
                 let t = (v / m).clamp(-1.0, 1.0);
                 if t >= 0.0 {
-                    Colour::lerp(Colour::WHITE, Colour(178, 24, 43), t)
+                    Colour::lerp(Colour::WHITE, Colour::RED, t)
                 } else {
-                    Colour::lerp(Colour::WHITE, Colour(33, 102, 172), -t)
+                    Colour::lerp(Colour::WHITE, Colour::BLUE, -t)
                 }
             }
             Colourmap::Sequential => {

@@ -365,21 +365,15 @@ mod tests {
 
     #[test]
     fn csv_has_one_cell_per_header_column() {
-        let row = Row::new(
-            Bilayer {
-                x: 0.4,
-                alpha: 0.05,
-            },
-            "wave",
-            WallContact::Paper,
+        let point = Bilayer {
+            x: 0.4,
+            alpha: 0.05,
+        };
+        // a row of the exact engine at `point` with this result
+        let row_of = |result, timing| Row::new(point, "wave", WallContact::Paper, result, timing);
+        let row = row_of(
             Timed::try_measure(|| {
-                Engine::Wave(WaveConfig::default()).run(
-                    Bilayer {
-                        x: 0.4,
-                        alpha: 0.05,
-                    },
-                    &BilayerViscosity::default(),
-                )
+                Engine::Wave(WaveConfig::default()).run(point, &BilayerViscosity::default())
             }),
             true,
         );
@@ -393,28 +387,16 @@ mod tests {
             let (header, line) = text.trim_end_matches('\n').split_once('\n').unwrap();
             (header.to_string(), line.to_string())
         };
-        let (header, line) = csv(&row, true);
-        assert_eq!(line.split(',').count(), header.split(',').count());
         // regression: a failed row had one cell fewer than the header
-        let lost = Row::new(
-            Bilayer {
-                x: 0.4,
-                alpha: 0.05,
-            },
-            "wave",
-            WallContact::Paper,
+        let lost = row_of(
             Err(RunError::Wave(WaveError::TimeLimit { time: 1.0 })),
             true,
         );
-        let (header, line) = csv(&lost, true);
-        assert_eq!(line.split(',').count(), header.split(',').count());
-        let failed = Row::new(
-            Bilayer {
-                x: 0.4,
-                alpha: 0.05,
-            },
-            "wave",
-            WallContact::Paper,
+        for r in [&row, &lost] {
+            let (header, line) = csv(r, true);
+            assert_eq!(line.split(',').count(), header.split(',').count());
+        }
+        let failed = row_of(
             Err(RunError::Scene(SceneError::Json("a, \"b\"".into()))),
             false,
         );

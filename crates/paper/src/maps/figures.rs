@@ -25,7 +25,7 @@ impl Map<'_> {
         let overlays = levels
             .iter()
             .flat_map(|&l| contour(self.columns, self.rows, &values, l))
-            .map(|seg| (seg, Colour(20, 20, 20)))
+            .map(|seg| (seg, Colour::INK))
             .collect();
         Heatmap {
             title: title.into(),
@@ -130,7 +130,7 @@ fn fig5b(dir: &Path, rows: &[Row], alpha: f64, max_nb: f64) -> Result<String, Pa
         title: format!("Fig. 5(b): N_b vs x at alpha = {alpha}"),
         x: Axis::linear(0.0, 1.0, "x"),
         y: Axis::linear(0.0, max_nb + 1.0, "N_b"),
-        series: vec![Series::line("exact", low, Colour(33, 102, 172))],
+        series: vec![Series::line("exact", low, Colour::BLUE)],
     };
     figure(dir, "fig5b", &plot.to_svg())
 }

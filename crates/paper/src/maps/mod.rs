@@ -76,19 +76,16 @@ fn write_rows(dir: &Path, rows: &[Row]) -> Result<String, PaperError> {
         dir,
         "maps",
         "x,alpha,reduced_contact_time,n1,bounces,separations,restitution",
-        &rows
-            .iter()
-            .map(|r| {
-                vec![
-                    r.x,
-                    r.alpha,
-                    r.reduced_contact_time.unwrap_or(f64::NAN),
-                    r.n1.unwrap_or(f64::NAN),
-                    r.bounces.map_or(f64::NAN, f64::from),
-                    r.separations.map_or(f64::NAN, f64::from),
-                    r.restitution.unwrap_or(f64::NAN),
-                ]
-            })
-            .collect::<Vec<_>>(),
+        rows.iter().map(|r| {
+            vec![
+                r.x,
+                r.alpha,
+                r.reduced_contact_time.unwrap_or(f64::NAN),
+                r.n1.unwrap_or(f64::NAN),
+                r.bounces.map_or(f64::NAN, f64::from),
+                r.separations.map_or(f64::NAN, f64::from),
+                r.restitution.unwrap_or(f64::NAN),
+            ]
+        }),
     )
 }

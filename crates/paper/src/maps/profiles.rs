@@ -26,7 +26,7 @@ pub(super) fn run(dir: &std::path::Path, xs: &[f64]) -> Result<Profiles, PaperEr
         Colour(33, 145, 140),
         Colour(94, 201, 98),
         Colour(200, 160, 20),
-        Colour(178, 24, 43),
+        Colour::RED,
     ];
     let mut series = Vec::new();
     let mut profile_rows = Vec::new();
@@ -57,7 +57,7 @@ pub(super) fn run(dir: &std::path::Path, xs: &[f64]) -> Result<Profiles, PaperEr
                 .push(Series::line(&format!("Eq. 11, alpha = {a}"), eq, Colour(0, 0, 0)).dashed());
         }
     }
-    let data = csv(dir, "fig6b", "alpha,x,e_exact,e_eq11", &profile_rows)?;
+    let data = csv(dir, "fig6b", "alpha,x,e_exact,e_eq11", profile_rows)?;
     let fig6b = LinePlot {
         title: "Fig. 6(b): e(x) at fixed alpha (dashed: Eq. 11)".into(),
         x: Axis::linear(0.0, 1.0, "x"),

@@ -5,11 +5,10 @@
 
 use super::rod;
 use crate::claim::Claim;
-use crate::{PaperError, Settings};
+use crate::{PaperError, Settings, try_par_map};
 use impact_chain::ChainConfig;
 use impact_model::numerics::lagrange_weights;
 use impact_model::{WallContact, calibration};
-use impact_study::par_map;
 use impact_study::{LimitSettings, chain_limit};
 
 /// Distance from the end at which Sec. VII's end values are checked.
@@ -85,9 +84,7 @@ pub(super) fn claim(s: &Settings) -> Result<Claim, PaperError> {
         .flat_map(|&v| [(v, 1.0), (1.0, v)])
         .filter(|&(e1, e2)| e1 < 1.0 || e2 < 1.0)
         .collect();
-    let ends: Vec<End> = par_map(&pairs, &(), |&(e1, e2)| end_value(e1, e2))
-        .into_iter()
-        .collect::<Result<_, _>>()?;
+    let ends: Vec<End> = try_par_map(&pairs, |&(e1, e2)| end_value(e1, e2))?;
     let bottom_ok = ends
         .iter()
         .filter(|e| e.at_bottom)

@@ -3,36 +3,30 @@
 
 use super::point;
 use crate::claim::{Claim, Item, csv, figure};
-use crate::{PaperError, Settings};
+use crate::{PaperError, Settings, try_par_map};
 use impact_model::Outcome;
 use impact_model::numerics::spearman;
 use impact_plot::{Axis, Colour, LinePlot, Series};
-use impact_study::par_map;
 use std::path::Path;
 
 pub fn run_10(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
     let xs = Settings::unit_steps(s.visco_x_step);
-    let curve: Vec<(f64, Outcome)> = par_map(&xs, &(), |&x| {
+    let curve: Vec<(f64, Outcome)> = try_par_map(&xs, |&x| {
         point(x, 0.94, 0.72, s.visco_masses).map(|o| (x, o))
-    })
-    .into_iter()
-    .collect::<Result<_, _>>()?;
+    })?;
     let data = csv(
         dir,
         "fig10",
         "x,restitution,bounces,separations,reduced_contact_time",
-        &curve
-            .iter()
-            .map(|(x, o)| {
-                vec![
-                    *x,
-                    o.restitution,
-                    f64::from(o.bounces),
-                    f64::from(o.separations),
-                    o.reduced_contact_time,
-                ]
-            })
-            .collect::<Vec<_>>(),
+        curve.iter().map(|(x, o)| {
+            vec![
+                *x,
+                o.restitution,
+                f64::from(o.bounces),
+                f64::from(o.separations),
+                o.reduced_contact_time,
+            ]
+        }),
     )?;
     let figures = vec![
         figure(
@@ -45,7 +39,7 @@ pub fn run_10(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
                 series: vec![Series::line(
                     "chain",
                     curve.iter().map(|(x, o)| (*x, o.restitution)).collect(),
-                    Colour(33, 102, 172),
+                    Colour::BLUE,
                 )],
             }
             .to_svg(),
@@ -71,7 +65,7 @@ pub fn run_10(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
                         .iter()
                         .map(|(x, o)| (*x, f64::from(o.bounces)))
                         .collect(),
-                    Colour(178, 24, 43),
+                    Colour::RED,
                 )],
             }
             .to_svg(),

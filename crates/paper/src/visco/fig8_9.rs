@@ -4,22 +4,21 @@
 
 use super::{ALPHA, ends, point};
 use crate::claim::{Claim, Item, csv, figure};
-use crate::{PaperError, Settings};
+use crate::{PaperError, Settings, try_par_map};
 use impact_model::{Bilayer, Outcome};
 use impact_plot::{Axis, Colour, LinePlot, Series};
-use impact_study::par_map;
 use std::path::Path;
 
 /// The curves' colours, red (most viscous) to blue, then black.
 fn palette(i: usize) -> Colour {
     [
-        Colour(178, 24, 43),
+        Colour::RED,
         Colour(214, 96, 77),
         Colour(244, 165, 130),
         Colour(146, 197, 222),
         Colour(67, 147, 195),
-        Colour(33, 102, 172),
-        Colour(20, 20, 20),
+        Colour::BLUE,
+        Colour::INK,
     ][i % 7]
 }
 
@@ -48,16 +47,14 @@ pub fn run_8_9(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
     let mut regimes_ok = 0;
     let mut curves_total = 0;
     for (panel, varied_bottom) in [("a", true), ("b", false)] {
-        let curves: Vec<(f64, Vec<(f64, Outcome)>)> = par_map(&s.visco_values, &(), |&v| {
+        let curves: Vec<(f64, Vec<(f64, Outcome)>)> = try_par_map(&s.visco_values, |&v| {
             let (e1, e2) = if varied_bottom { (v, 1.0) } else { (1.0, v) };
             let curve = xs
                 .iter()
                 .map(|&x| point(x, e1, e2, s.visco_masses).map(|o| (x, o)))
                 .collect::<Result<Vec<_>, _>>()?;
             Ok((v, curve))
-        })
-        .into_iter()
-        .collect::<Result<_, PaperError>>()?;
+        })?;
         figures.extend(draw_panel(dir, panel, varied_bottom, &xs, &curves)?);
         for (v, curve) in &curves {
             for (x, o) in curve {
@@ -86,7 +83,7 @@ pub fn run_8_9(dir: &Path, s: &Settings) -> Result<Item, PaperError> {
         dir,
         "fig8-9",
         "varied_layer,layer_restitution,x,restitution,reduced_contact_time,bounces",
-        &rows,
+        rows,
     )?;
     // transition moves to larger x as e2 drops, to smaller x as e1 drops
     let trend = |bottom: bool| {
