@@ -15,7 +15,7 @@
 //! a run that cannot finish is 422 with the command line's message.
 
 use super::map::Maps;
-use super::{APP_CSS, APP_JS, INDEX_HTML};
+use super::{APP_CSS, APP_JS, index_page};
 use crate::args::{Cli, Command, DiagramArgs, RunArgs};
 use axum::extract::rejection::QueryRejection;
 use axum::extract::{DefaultBodyLimit, Query, State};
@@ -165,7 +165,7 @@ type RawQuery = Result<Query<Vec<(String, String)>>, QueryRejection>;
 /// The explorer's routes.
 pub fn router(app: App) -> Router {
     Router::new()
-        .route("/", get(|| async { Html(INDEX_HTML) }))
+        .route("/", get(|| async { Html(index_page()) }))
         .route(
             "/app.js",
             get(|| async {

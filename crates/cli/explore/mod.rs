@@ -20,9 +20,11 @@ use crate::input;
 use anyhow::Context;
 use std::net::SocketAddr;
 
-/// The page and its script and style, served from the binary: nothing is
-/// fetched from anywhere else.
-pub const INDEX_HTML: &str = include_str!("page/index.html");
+/// The page's content, served from the binary in the one page shell of the
+/// tree (`impact_output::page`), as its script and style are: nothing is
+/// fetched from anywhere else. The style sheet is linked from the body, so
+/// its rules come after the shell's shared ones and override them.
+pub const BODY_HTML: &str = include_str!("page/body.html");
 /// The page's script.
 pub const APP_JS: &str = include_str!("page/app.js");
 /// The page's style.
@@ -79,6 +81,16 @@ pub fn explore(a: ExploreArgs) -> anyhow::Result<()> {
             .await
             .context("the server failed")
     })
+}
+
+/// The page: the shell's head and the explorer's body.
+pub fn index_page() -> String {
+    let head = impact_output::Head {
+        title: "impact explore",
+        style: impact_output::Stylesheet::shared(),
+        layout: impact_output::Layout::Spread,
+    };
+    impact_output::page(&head, BODY_HTML)
 }
 
 /// Opens `url` in the user's browser (`xdg-open`, `open` on macOS); a

@@ -334,7 +334,7 @@ async fn the_page_is_served_from_the_binary_and_fetches_nothing_else() {
         .await
         .unwrap();
     assert_eq!(response.status(), StatusCode::OK);
-    for text in [INDEX_HTML, APP_JS, APP_CSS] {
+    for text in [super::super::BODY_HTML, APP_JS, APP_CSS] {
         for external in ["http://", "https://", "//cdn", "@import"] {
             assert!(!text.contains(external), "{external}");
         }
