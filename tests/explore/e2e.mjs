@@ -67,7 +67,7 @@ try {
   // 3: click x = 0.4, alpha = 0.05 (the canvas is drawn at its own size)
   const box = { x0: 44, y0: 8, w: 460 - 44 - 8, h: 460 - 8 - 36 };
   await page.click("#map", { position: { x: box.x0 + 0.4 * box.w, y: box.y0 + (1 - 0.05) * box.h } });
-  await page.waitForFunction(() => document.getElementById("point-title").textContent.includes("x = 0.4, α = 0.05"));
+  await page.waitForFunction(() => document.getElementById("point-title").textContent === "x = 0.4, α = 0.05");
   await page.waitForFunction(() => document.querySelector("#diagram svg") !== null && document.getElementById("busy").hidden);
   const cli = JSON.parse(execFileSync(impact, ["run", "--x", "0.4", "--alpha", "0.05", "--json"]).toString());
   const shown = await page.textContent("#n-e");
@@ -87,7 +87,8 @@ try {
   const api = await (await fetch(`${url}api/run`, { method: "POST", body: JSON.stringify(scene) })).json();
   const shown3 = await page.textContent("#n-e");
   check("three layers: the numbers change", scene.layers.length === 3 && shown3 !== shown, `${shown3}`);
-  check("three layers: the numbers equal the API's", shown3 === api.restitution.toFixed(12), `${shown3} vs ${api.restitution}`);
+  check("three layers: the numbers equal the API's", shown3 === api.restitution.toFixed(12),
+    `${shown3} vs ${api.restitution} for ${JSON.stringify(scene)}; command ${await page.inputValue("#command")}, title ${await page.textContent("#point-title")}`);
 
   // 5: an invalid modulus
   const modulus = '#layers tr[data-layer="1"] input[data-key="modulus"]';
@@ -102,7 +103,7 @@ try {
     && document.getElementById("busy").hidden);
   check("the page still works after the bad value", (await page.textContent("#n-e")) !== "");
   await page.click("#map", { position: { x: box.x0 + 0.3 * box.w, y: box.y0 + (1 - 0.3) * box.h } });
-  await page.waitForFunction(() => document.getElementById("point-title").textContent.includes("x = 0.3, α = 0.3"));
+  await page.waitForFunction(() => document.getElementById("point-title").textContent === "x = 0.3, α = 0.3");
   await page.waitForFunction(() => document.getElementById("busy").hidden && document.querySelector("#diagram svg") !== null);
   const cli2 = JSON.parse(execFileSync(impact, ["run", "--x", "0.3", "--alpha", "0.3", "--json"]).toString());
   check("and the map still picks points", (await page.textContent("#n-e")) === cli2.restitution.toFixed(12));
@@ -142,7 +143,7 @@ try {
   // back to the point of the issue for the picture, the map refined
   await page.click("#map", { position: { x: box.x0 + 0.4 * box.w, y: box.y0 + (1 - 0.05) * box.h } });
   await page.waitForFunction(() => document.getElementById("map").dataset.step === "0.005", null, { timeout: 60000 });
-  await page.waitForFunction(() => document.getElementById("point-title").textContent.includes("x = 0.4, α = 0.05")
+  await page.waitForFunction(() => document.getElementById("point-title").textContent === "x = 0.4, α = 0.05"
     && document.getElementById("command").value === "impact run --x 0.4 --alpha 0.05"
     && document.getElementById("busy").hidden);
   await page.hover("#events tbody tr[data-id]:nth-child(6)");

@@ -315,8 +315,11 @@ function mapPoint(ev) {
     axis.forEach((w, k) => { if (Math.abs(w - v) < Math.abs(axis[best] - v)) best = k; });
     return best;
   };
+  // the map's nearest computed point (for the values shown), and the point
+  // picked: on the paper's 0.005 grid whatever step the map has reached
   const i = nearest(map.x, x), j = nearest(map.alpha, a);
-  return { i, j, x: round6(map.x[i]), alpha: round6(map.alpha[j]) };
+  const paper = (v) => round6(Math.min(0.995, Math.max(0.005, Math.round(v / 0.005) * 0.005)));
+  return { i, j, x: round6(map.x[i]), alpha: round6(map.alpha[j]), pickX: paper(x), pickAlpha: paper(a) };
 }
 
 function fmt(v, digits) {
@@ -759,7 +762,7 @@ function wire() {
   });
   $("map").addEventListener("click", (ev) => {
     const p = mapPoint(ev);
-    if (p) pickBilayer(p.x, p.alpha);
+    if (p) pickBilayer(p.pickX, p.pickAlpha);
   });
   document.querySelectorAll('input[name="quantity"]').forEach((r) =>
     r.addEventListener("change", () => { state.quantity = r.value; saveUrl(); drawMap(); }));
