@@ -127,6 +127,12 @@ struct Factor {
     inv_d: Vec<f64>,
     /// Masses per block, 0 for a one-piece sweep (at least 2 otherwise).
     lane: usize,
+    /// Step `i` of the forward sweep in the blocks: `[l1, l2]` of masses
+    /// `k lane + i`, `k < LANES`.
+    fwd: Vec<[[f64; LANES]; 2]>,
+    /// Step `i` of the backward sweep: `[1 / d, l1[j + 1], l2[j + 2]]` of
+    /// masses `j = k lane + i`.
+    bwd: Vec<[[f64; LANES]; 3]>,
     /// Forward sweep: blocks `1..LANES`, from their bottoms up.
     down: Vec<Tail>,
     /// Backward sweep: blocks `0..LANES - 1`, from their tops down.
@@ -221,11 +227,22 @@ impl Factor {
             l1,
             l2,
             lane,
+            fwd: vec![],
+            bwd: vec![],
             down: vec![],
             up: vec![],
             first_stage_0: vec![],
         };
         if lane > 0 {
+            let at = |x: &[f64], shift: usize, i: usize| -> [f64; LANES] {
+                std::array::from_fn(|k| x[k * lane + i + shift])
+            };
+            f.fwd = (0..lane)
+                .map(|i| [at(&f.l1, 0, i), at(&f.l2, 0, i)])
+                .collect();
+            f.bwd = (0..lane)
+                .map(|i| [at(&f.inv_d, 0, i), at(&f.l1, 1, i), at(&f.l2, 2, i)])
+                .collect();
             f.down = (1..LANES).map(|k| f.down_tail(k)).collect();
             f.up = (0..LANES - 1).map(|k| f.up_tail(k)).collect();
         }
@@ -338,64 +355,66 @@ impl Factor {
         }
     }
 
-    /// Solves `P x = r`: `r` holds `L^-1 r` on return, `x` the solution.
-    fn solve_into(&self, r: &mut [f64], x: &mut [f64]) {
+    /// Solves `P x = r`, `t` (`lane` long) the sweeps' scratch; `r` is
+    /// overwritten.
+    ///
+    /// The blocks' recurrences run in the lanes of `[f64; LANES]` arrays:
+    /// the forward sweep gathers `r` from the blocks into `t`, the backward
+    /// sweep scatters its result into `x`, and in between every operation
+    /// is elementwise on `LANES` numbers with one coefficient array per
+    /// step (`fwd`, `bwd`: one pointer each, no index arithmetic), which
+    /// the compiler packs into `mulpd`/`subpd` (two lanes per SSE2
+    /// register) and the core overlaps (independent recurrences).
+    fn solve_into(&self, r: &mut [f64], t: &mut [[f64; LANES]], x: &mut [f64]) {
         if self.lane == 0 {
             x.copy_from_slice(r);
             self.solve(x);
             return;
         }
-        self.forward(r);
-        self.backward(r, x);
-    }
-
-    /// `y = L^-1 r` in place, the blocks side by side, then their tails.
-    fn forward(&self, y: &mut [f64]) {
-        let (n, s) = (y.len(), self.lane);
-        let (l1, l2) = (&self.l1[..n], &self.l2[..n]);
+        let (n, s) = (r.len(), self.lane);
+        let whole = LANES * s;
+        let (t, fwd, bwd) = (&mut t[..s], &self.fwd[..s], &self.bwd[..s]);
+        let (l1, l2, inv_d) = (&self.l1, &self.l2, &self.inv_d);
+        // forward, the blocks side by side
         let mut y1 = [0.0; LANES];
         let mut y2 = [0.0; LANES];
         {
-            let ys: [&mut [f64]; LANES] = lanes_mut(y, s);
-            let (a, b): ([&[f64]; LANES], [&[f64]; LANES]) = (lanes(l1, s), lanes(l2, s));
-            // LANES independent recurrences per iteration: the core
-            // overlaps them, so the loop runs at its throughput, not at
-            // the latency of one recurrence
-            for i in 0..s {
-                for k in 0..LANES {
-                    let y = (ys[k][i] - b[k][i] * y2[k]) - a[k][i] * y1[k];
-                    ys[k][i] = y;
-                    y2[k] = y1[k];
-                    y1[k] = y;
-                }
+            let rs = lanes(r, s);
+            for (i, (t, [a, b])) in t.iter_mut().zip(fwd).enumerate() {
+                let y: [f64; LANES] =
+                    std::array::from_fn(|k| (rs[k][i] - b[k] * y2[k]) - a[k] * y1[k]);
+                *t = y;
+                y2 = y1;
+                y1 = y;
             }
         }
-        // the last block's rest
+        // the last block's rest, in place in `r`
         let (mut a, mut b) = (y1[LANES - 1], y2[LANES - 1]);
-        for i in LANES * s..n {
-            let next = (y[i] - l2[i] * b) - l1[i] * a;
-            y[i] = next;
+        for i in whole..n {
+            let y = (r[i] - l2[i] * b) - l1[i] * a;
+            r[i] = y;
             b = a;
-            a = next;
+            a = y;
         }
+        // forward tails, block after block
         let mut p = [y1[0], y2[0]];
         for (k, tail) in (1..LANES).zip(&self.down) {
             let (start, end) = self.block(k);
-            let ends = tail.carry([y[end - 1], y[end - 2]], p);
-            tail.fix(&mut y[start..end], p);
-            [y[end - 1], y[end - 2]] = ends;
+            let ends = {
+                let mut at = |j: usize| *slot(t, r, s, j);
+                tail.carry([at(end - 1), at(end - 2)], p)
+            };
+            for (i, (h1, h2)) in tail.near[0].iter().zip(&tail.near[1]).enumerate() {
+                *slot(t, r, s, start + i) += p[0] * h1 + p[1] * h2;
+            }
+            *slot(t, r, s, end - 1) = ends[0];
+            *slot(t, r, s, end - 2) = ends[1];
             p = ends;
         }
-    }
-
-    /// `x = L^-T D^-1 y`, the blocks side by side, then their tails.
-    fn backward(&self, y: &[f64], x: &mut [f64]) {
-        let (n, s) = (y.len(), self.lane);
-        let (d, u1, u2) = (&self.inv_d[..n], &self.l1[1..n + 1], &self.l2[2..n + 2]);
-        // the last block's rest, from the top
+        // backward: the last block's rest from the top, then the blocks
         let (mut a, mut b) = (0.0, 0.0);
-        for j in (LANES * s..n).rev() {
-            let z = (y[j] * d[j] - u2[j] * b) - u1[j] * a;
+        for j in (whole..n).rev() {
+            let z = (r[j] * inv_d[j] - l2[j + 2] * b) - l1[j + 1] * a;
             x[j] = z;
             b = a;
             a = z;
@@ -405,19 +424,18 @@ impl Factor {
         z1[LANES - 1] = a;
         z2[LANES - 1] = b;
         {
-            let xs: [&mut [f64]; LANES] = lanes_mut(x, s);
-            let (ys, ds) = (lanes(y, s), lanes(d, s));
-            let (a, b) = (lanes(u1, s), lanes(u2, s));
-            // as in the forward sweep: LANES recurrences overlap
-            for i in (0..s).rev() {
-                for k in 0..LANES {
-                    let z = (ys[k][i] * ds[k][i] - b[k][i] * z2[k]) - a[k][i] * z1[k];
-                    xs[k][i] = z;
-                    z2[k] = z1[k];
-                    z1[k] = z;
+            let mut xs = lanes_mut(x, s);
+            for (i, (y, [d, u1, u2])) in t.iter().zip(bwd).enumerate().rev() {
+                let z: [f64; LANES] =
+                    std::array::from_fn(|k| (y[k] * d[k] - u2[k] * z2[k]) - u1[k] * z1[k]);
+                for (x, z) in xs.iter_mut().zip(z) {
+                    x[i] = z;
                 }
+                z2 = z1;
+                z1 = z;
             }
         }
+        // backward tails, block after block, from the top
         let top = (LANES - 1) * s;
         let mut q = [x[top], x[top + 1]];
         for (k, tail) in (0..LANES - 1).zip(&self.up).rev() {
@@ -458,6 +476,16 @@ fn lanes(x: &[f64], s: usize) -> [&[f64]; LANES] {
 fn lanes_mut(x: &mut [f64], s: usize) -> [&mut [f64]; LANES] {
     let mut blocks = x.chunks_exact_mut(s);
     std::array::from_fn(|_| blocks.next().unwrap_or_default())
+}
+
+/// Mass `j`'s value in the forward sweep's storage: `t` for the blocks'
+/// first `LANES * s` masses (block `j / s`, step `j % s`), `r` after.
+fn slot<'a>(t: &'a mut [[f64; LANES]], r: &'a mut [f64], s: usize, j: usize) -> &'a mut f64 {
+    if j < LANES * s {
+        &mut t[j % s][j / s]
+    } else {
+        &mut r[j]
+    }
 }
 
 /// A run of masses `start..end` of one viscous or elastic layer: equal
@@ -534,6 +562,8 @@ pub struct Dashpots {
     stencil: Stencil,
     /// The right-hand side, then the forward sweep's `L^-1 r`.
     rhs: Vec<f64>,
+    /// The blocked sweeps' lanes.
+    lanes: Vec<[f64; LANES]>,
     /// The velocities before a step, kept in case it must be redone.
     scratch: Vec<f64>,
 }
@@ -571,6 +601,7 @@ impl Dashpots {
             lane,
             stencil: Stencil { runs, edges },
             rhs: vec![0.0; n],
+            lanes: vec![[0.0; LANES]; lane],
             scratch: vec![0.0; n],
         }
     }
@@ -597,7 +628,7 @@ impl Dashpots {
         } else {
             0.0
         };
-        factor.solve_into(r, v);
+        factor.solve_into(r, &mut self.lanes, v);
         -self.h * wall * ((1.0 - GAMMA) * first_stage_0 + GAMMA * v[0])
     }
 
@@ -706,6 +737,7 @@ mod tests {
                 let mut d = Dashpots::new(mass, c, h);
                 if lane > 0 {
                     d.lane = lane;
+                    d.lanes = vec![[0.0; LANES]; lane];
                     d.with_wall = Factor::with_lane(mass, c, h, c[0], lane);
                     d.free = Factor::with_lane(mass, c, h, 0.0, lane);
                 }
@@ -787,6 +819,7 @@ mod tests {
                 for lane in [lane_length(n), 2, 3, 61, n / LANES] {
                     let mut blocked = Dashpots::new(mass, c, h);
                     blocked.lane = lane;
+                    blocked.lanes = vec![[0.0; LANES]; lane];
                     blocked.with_wall = Factor::with_lane(mass, c, h, c[0], lane);
                     blocked.free = Factor::with_lane(mass, c, h, 0.0, lane);
                     for wall in [c[0], 0.0, 0.37 * c[0]] {
