@@ -549,9 +549,29 @@ impl Stencil {
     }
 }
 
-/// The dashpot step over `h`, factorised for the wall dashpot on and off.
+/// The dashpot step over `h`.
+///
+/// `P` couples two masses only through a dashpot, so the chain splits into
+/// segments, each a run of masses joined by dashpots, solved on its own:
+/// the masses of an elastic layer away from its viscous neighbours have no
+/// dashpot at all, their step is the identity, and they are not touched
+/// (two thirds of the sweeps' work in a bilayer with one viscous layer of a
+/// third of the rod).
 #[derive(Debug, Clone)]
 pub struct Dashpots {
+    /// The segments and their first masses; only one starting at mass 0
+    /// feels the wall.
+    segments: Vec<(usize, Segment)>,
+    /// The wall element's dashpot constant, `c_0`.
+    wall: f64,
+    /// The velocities before a step, kept in case it must be redone.
+    scratch: Vec<f64>,
+}
+
+/// One run of masses joined by dashpots, factorised for the wall dashpot
+/// on and off (the same factor twice unless it starts at mass 0).
+#[derive(Debug, Clone)]
+struct Segment {
     with_wall: Factor,
     free: Factor,
     /// Dashpot constants (element `j` below mass `j`).
@@ -564,14 +584,86 @@ pub struct Dashpots {
     rhs: Vec<f64>,
     /// The blocked sweeps' lanes.
     lanes: Vec<[f64; LANES]>,
-    /// The velocities before a step, kept in case it must be redone.
-    scratch: Vec<f64>,
 }
 
 impl Dashpots {
     /// Dashpots of constants `c[j]` (element `j` below mass `j`) over a step
     /// `h`.
     pub fn new(mass: &[f64], c: &[f64], h: f64) -> Self {
+        let n = mass.len();
+        // a mass with a dashpot below or above (the wall's for mass 0)
+        let damped = |i: usize| c[i] != 0.0 || (i + 1 < n && c[i + 1] != 0.0);
+        let mut bounds: Vec<(usize, usize)> = Vec::new();
+        for i in (0..n).filter(|&i| damped(i)) {
+            match bounds.last_mut() {
+                Some((_, end)) if *end == i && c[i] != 0.0 => *end += 1,
+                _ => bounds.push((i, i + 1)),
+            }
+        }
+        Self {
+            segments: bounds
+                .iter()
+                .map(|&(a, b)| (a, Segment::new(&mass[a..b], &c[a..b], h)))
+                .collect(),
+            wall: c[0],
+            scratch: vec![0.0; n],
+        }
+    }
+
+    /// One SDIRK2 step on `v` with the wall dashpot's constant `wall` (`c_0`,
+    /// 0, or a fraction of `c_0` for a step in which the contact begins or
+    /// ends); returns the wall dashpot's impulse on mass 0 (upward positive).
+    fn flow(&mut self, mass: &[f64], v: &mut [f64], wall: f64) -> f64 {
+        let mut impulse = 0.0;
+        for (start, segment) in &mut self.segments {
+            let range = *start..*start + segment.c.len();
+            let wall = if *start == 0 { wall } else { 0.0 };
+            impulse += segment.flow(&mass[range.clone()], &mut v[range], wall);
+        }
+        impulse
+    }
+
+    /// One dashpot step. While the wall element is compressed (for the
+    /// fraction `compressed` of the step) its dashpot acts on mass 0 like
+    /// any other; `spring_impulse` is what the wall spring gave during the
+    /// step. Under the paper's law that is all (the wall may pull through
+    /// the dashpot). Under the unilateral law the wall pushes, never pulls:
+    /// if spring plus dashpot would pull, the step is redone with the wall
+    /// giving no impulse at all (the dashpot cancels the spring, and the rod
+    /// starts to leave). Returns the dashpot's impulse on mass 0 (upward
+    /// positive).
+    pub fn step(
+        &mut self,
+        mass: &[f64],
+        v: &mut [f64],
+        compressed: f64,
+        spring_impulse: f64,
+        law: WallContact,
+    ) -> f64 {
+        let wall = compressed * self.wall;
+        if wall == 0.0 {
+            self.flow(mass, v, 0.0);
+            return 0.0;
+        }
+        if law == WallContact::Paper {
+            return self.flow(mass, v, wall);
+        }
+        self.scratch.copy_from_slice(v);
+        let dashpot = self.flow(mass, v, wall);
+        if dashpot + spring_impulse >= 0.0 {
+            return dashpot;
+        }
+        v.copy_from_slice(&self.scratch);
+        v[0] -= spring_impulse / mass[0];
+        self.flow(mass, v, 0.0);
+        -spring_impulse
+    }
+}
+
+impl Segment {
+    /// A segment of constants `c[j]` (element `j` below mass `j`, `c[0]`
+    /// the wall's for the segment at mass 0, 0 for the others) over `h`.
+    fn new(mass: &[f64], c: &[f64], h: f64) -> Self {
         let n = mass.len();
         let s = (1.0 - 2.0 * GAMMA) * h;
         let mut runs: Vec<Run> = Vec::new();
@@ -602,13 +694,11 @@ impl Dashpots {
             stencil: Stencil { runs, edges },
             rhs: vec![0.0; n],
             lanes: vec![[0.0; LANES]; lane],
-            scratch: vec![0.0; n],
         }
     }
 
-    /// One SDIRK2 step on `v` with the wall dashpot's constant `wall` (`c_0`,
-    /// 0, or a fraction of `c_0` for a step in which the contact begins or
-    /// ends); returns the wall dashpot's impulse on mass 0 (upward positive).
+    /// [`Dashpots::flow`] on this segment's masses, `wall` 0 unless it
+    /// starts at mass 0.
     fn flow(&mut self, mass: &[f64], v: &mut [f64], wall: f64) -> f64 {
         let built;
         let factor = if wall == 0.0 {
@@ -630,42 +720,6 @@ impl Dashpots {
         };
         factor.solve_into(r, &mut self.lanes, v);
         -self.h * wall * ((1.0 - GAMMA) * first_stage_0 + GAMMA * v[0])
-    }
-
-    /// One dashpot step. While the wall element is compressed (for the
-    /// fraction `compressed` of the step) its dashpot acts on mass 0 like
-    /// any other; `spring_impulse` is what the wall spring gave during the
-    /// step. Under the paper's law that is all (the wall may pull through
-    /// the dashpot). Under the unilateral law the wall pushes, never pulls:
-    /// if spring plus dashpot would pull, the step is redone with the wall
-    /// giving no impulse at all (the dashpot cancels the spring, and the rod
-    /// starts to leave). Returns the dashpot's impulse on mass 0 (upward
-    /// positive).
-    pub fn step(
-        &mut self,
-        mass: &[f64],
-        v: &mut [f64],
-        compressed: f64,
-        spring_impulse: f64,
-        law: WallContact,
-    ) -> f64 {
-        let wall = compressed * self.c[0];
-        if wall == 0.0 {
-            self.flow(mass, v, 0.0);
-            return 0.0;
-        }
-        if law == WallContact::Paper {
-            return self.flow(mass, v, wall);
-        }
-        self.scratch.copy_from_slice(v);
-        let dashpot = self.flow(mass, v, wall);
-        if dashpot + spring_impulse >= 0.0 {
-            return dashpot;
-        }
-        v.copy_from_slice(&self.scratch);
-        v[0] -= spring_impulse / mass[0];
-        self.flow(mass, v, 0.0);
-        -spring_impulse
     }
 }
 
@@ -734,13 +788,7 @@ mod tests {
         for (n, lane) in (1..=all_mass.len()).map(|n| (n, 0)).chain([(8, 2), (9, 2)]) {
             let (mass, c, v0) = (&all_mass[..n], &all_c[..n], &all_v[..n]);
             for h in [0.01, 0.4, 30.0] {
-                let mut d = Dashpots::new(mass, c, h);
-                if lane > 0 {
-                    d.lane = lane;
-                    d.lanes = vec![[0.0; LANES]; lane];
-                    d.with_wall = Factor::with_lane(mass, c, h, c[0], lane);
-                    d.free = Factor::with_lane(mass, c, h, 0.0, lane);
-                }
+                let mut d = blocked(Dashpots::new(mass, c, h), mass, h, |_| lane);
                 for wall in [c[0], 0.0, 0.37 * c[0]] {
                     let mut v = v0.to_vec();
                     let impulse = d.flow(mass, &mut v, wall);
@@ -762,6 +810,24 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// `d` with each segment's sweeps cut into blocks of `lane(masses)`
+    /// (one piece where that is 0 or too long for the segment).
+    fn blocked(mut d: Dashpots, mass: &[f64], h: f64, lane: impl Fn(usize) -> usize) -> Dashpots {
+        for (start, segment) in &mut d.segments {
+            let n = segment.c.len();
+            let mut l = lane(n);
+            if l < 2 || LANES * l > n {
+                l = 0;
+            }
+            let m = &mass[*start..*start + n];
+            segment.lane = l;
+            segment.lanes = vec![[0.0; LANES]; l];
+            segment.with_wall = Factor::with_lane(m, &segment.c, h, segment.c[0], l);
+            segment.free = Factor::with_lane(m, &segment.c, h, 0.0, l);
+        }
+        d
     }
 
     /// A layered chain: per layer `(masses, m, c)`.
@@ -812,16 +878,11 @@ mod tests {
                     .zip(mass)
                     .fold(0.0f64, |a, (c, m)| a.max(GAMMA * h * c / m));
                 let tolerance = 1e-12f64.max(1e-14 * stiffness);
-                let mut one_piece = Dashpots::new(mass, c, h);
-                one_piece.lane = 0;
-                one_piece.with_wall = Factor::with_lane(mass, c, h, c[0], 0);
-                one_piece.free = Factor::with_lane(mass, c, h, 0.0, 0);
-                for lane in [lane_length(n), 2, 3, 61, n / LANES] {
-                    let mut blocked = Dashpots::new(mass, c, h);
-                    blocked.lane = lane;
-                    blocked.lanes = vec![[0.0; LANES]; lane];
-                    blocked.with_wall = Factor::with_lane(mass, c, h, c[0], lane);
-                    blocked.free = Factor::with_lane(mass, c, h, 0.0, lane);
+                let mut one_piece = blocked(Dashpots::new(mass, c, h), mass, h, |_| 0);
+                let lanes: [fn(usize) -> usize; 5] =
+                    [lane_length, |_| 2, |_| 3, |_| 61, |n| n / LANES];
+                for (choice, lane) in lanes.iter().enumerate() {
+                    let mut blocked = blocked(Dashpots::new(mass, c, h), mass, h, lane);
                     for wall in [c[0], 0.0, 0.37 * c[0]] {
                         let mut reference = v0.clone();
                         let impulse_0 = one_piece.flow(mass, &mut reference, wall);
@@ -831,7 +892,7 @@ mod tests {
                             worst = worst.max((x - y).abs());
                             assert!(
                                 (x - y).abs() < tolerance,
-                                "n {n}, h {h}, wall {wall}, lane {lane}, mass {i}: {x} vs {y}"
+                                "n {n}, h {h}, wall {wall}, lanes {choice}, mass {i}: {x} vs {y}"
                             );
                         }
                         let scale = h * wall * mass.iter().sum::<f64>() / mass[0];
