@@ -25,21 +25,58 @@
 use crate::layout::ChainLayout;
 
 /// A run of masses `start..end` of one layer whose neighbours above and
-/// below are joined by springs of that layer: `c = dt^2 k / m`.
+/// below are joined by springs of that layer: `c = scale k / m`.
 #[derive(Debug, Clone, Copy)]
-struct Run {
-    start: usize,
-    end: usize,
-    c: f64,
+pub(crate) struct Run {
+    pub(crate) start: usize,
+    pub(crate) end: usize,
+    pub(crate) c: f64,
 }
 
-/// A mass at a change of `k` or `m`: `dt^2 k_below / m` and
-/// `dt^2 k_above / m` (zero at the top).
+/// A mass at a change of `k` or `m`: `scale k_below / m` and
+/// `scale k_above / m` (zero at the top).
 #[derive(Debug, Clone, Copy)]
-struct Edge {
-    mass: usize,
-    below: f64,
-    above: f64,
+pub(crate) struct Edge {
+    pub(crate) mass: usize,
+    pub(crate) below: f64,
+    pub(crate) above: f64,
+}
+
+/// The chain's springs as runs of one `scale k / m` and the edges between
+/// them (mass 0, the top of each layer, the top of the rod), shared by
+/// Verlet's kernel (`scale = dt^2`) and Beeman's (`scale = 1`).
+pub(crate) fn spring_runs(layout: &ChainLayout, scale: f64) -> (Vec<Run>, Vec<Edge>) {
+    let n = layout.len();
+    let (k, m) = (&layout.stiffness, &layout.mass);
+    let coefficient = |spring: usize, mass: usize| scale * k[spring] / m[mass];
+    let mut runs: Vec<Run> = Vec::new();
+    let mut edges: Vec<Edge> = Vec::new();
+    for j in 0..n {
+        let above = if j + 1 < n {
+            coefficient(j + 1, j)
+        } else {
+            0.0
+        };
+        let below = coefficient(j, j);
+        let interior = j > 0 && j + 1 < n && k[j] == k[j + 1];
+        if !interior {
+            edges.push(Edge {
+                mass: j,
+                below,
+                above,
+            });
+            continue;
+        }
+        match runs.last_mut() {
+            Some(r) if r.end == j && r.c == below => r.end += 1,
+            _ => runs.push(Run {
+                start: j,
+                end: j + 1,
+                c: below,
+            }),
+        }
+    }
+    (runs, edges)
 }
 
 /// Positions of the elastic chain now and the last step's motion.
@@ -62,42 +99,13 @@ impl VerletChain {
     /// `d(0) = u(0) - u(-1) = -dt impact_speed`.
     pub fn new(layout: &ChainLayout, dt: f64, impact_speed: f64) -> Self {
         let n = layout.len();
-        let (k, m) = (&layout.stiffness, &layout.mass);
-        let dt2 = dt * dt;
-        let coefficient = |spring: usize, mass: usize| dt2 * k[spring] / m[mass];
-        let mut runs: Vec<Run> = Vec::new();
-        let mut edges: Vec<Edge> = Vec::new();
-        for j in 0..n {
-            let above = if j + 1 < n {
-                coefficient(j + 1, j)
-            } else {
-                0.0
-            };
-            let below = coefficient(j, j);
-            let interior = j > 0 && j + 1 < n && k[j] == k[j + 1];
-            if !interior {
-                edges.push(Edge {
-                    mass: j,
-                    below,
-                    above,
-                });
-                continue;
-            }
-            match runs.last_mut() {
-                Some(r) if r.end == j && r.c == below => r.end += 1,
-                _ => runs.push(Run {
-                    start: j,
-                    end: j + 1,
-                    c: below,
-                }),
-            }
-        }
+        let (runs, edges) = spring_runs(layout, dt * dt);
         Self {
             now: vec![0.0; n],
             motion: vec![-dt * impact_speed; n],
             runs,
             edges,
-            wall: coefficient(0, 0),
+            wall: dt * dt * layout.stiffness[0] / layout.mass[0],
             dt,
         }
     }
@@ -150,7 +158,7 @@ impl VerletChain {
 
 /// `dt^2` times the acceleration of an edge mass at positions `u(i)`.
 #[inline]
-fn edge_dt2_acceleration(wall: f64, e: &Edge, u: impl Fn(usize) -> f64) -> f64 {
+pub(crate) fn edge_dt2_acceleration(wall: f64, e: &Edge, u: impl Fn(usize) -> f64) -> f64 {
     let j = e.mass;
     let below = if j == 0 {
         wall * u(0).min(0.0)
