@@ -9,7 +9,7 @@
 
 import { chromium } from "playwright-core";
 import { spawn, execFileSync } from "node:child_process";
-import { mkdtempSync, mkdirSync, rmSync } from "node:fs";
+import { mkdtempSync, mkdirSync, rmSync, readFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join, resolve, dirname } from "node:path";
 import { fileURLToPath } from "node:url";
@@ -46,6 +46,7 @@ function startServer() {
 const { server, url } = await startServer();
 const profile = mkdtempSync(join(tmpdir(), "impact-e2e-"));
 const context = await chromium.launchPersistentContext(profile, {
+  acceptDownloads: true,
   executablePath: process.env.CHROMIUM || "/usr/bin/chromium",
   headless: true,
   viewport: { width: 1400, height: 1250 },
@@ -76,6 +77,18 @@ try {
   check("the diagram shows 2 separations", separations === 2 && cli.separations === 2, `${separations}`);
   const command = await page.inputValue("#command");
   check("the command is the one that gives the same result", command === "impact run --x 0.4 --alpha 0.05", command);
+
+  check("the diagram's command", (await page.inputValue("#diagram-command")) === "impact diagram --x 0.4 --alpha 0.05 --out diagram.svg");
+  for (const [button, name] of [["#dl-svg", ".svg"], ["#dl-png", ".png"], ["#dl-json", ".json"]]) {
+    const [download] = await Promise.all([page.waitForEvent("download"), page.click(button)]);
+    const file = join(out, download.suggestedFilename());
+    await download.saveAs(file);
+    const bytes = readFileSync(file);
+    const ok = name === ".png" ? bytes.subarray(1, 4).toString() === "PNG"
+      : name === ".svg" ? bytes.toString().startsWith("<svg")
+      : JSON.parse(bytes.toString()).restitution === cli.restitution;
+    check(`download ${download.suggestedFilename()}`, ok && download.suggestedFilename().endsWith(name));
+  }
 
   // 4: a third layer
   await page.click("#add-layer");

@@ -617,6 +617,7 @@ function currentWindow() {
 
 function showDiagram(d) {
   $("diagram").innerHTML = d.svg;
+  $("diagram-command").value = d.command;
   const w = currentWindow();
   $("window-text").textContent = state.window ? `t from ${w[0].toPrecision(4)} to ${w[1].toPrecision(4)}` : "the whole impact";
   fillEvents(d);
@@ -841,17 +842,20 @@ function wire() {
       : sceneJson();
     if (built.scene) download("scene.json", new Blob([JSON.stringify(built.scene, null, 2)], { type: "application/json" }));
   });
-  $("copy").addEventListener("click", async () => {
-    const text = $("command").value;
-    try {
-      await navigator.clipboard.writeText(text);
-    } catch (e) {
-      $("command").select();
-      document.execCommand("copy");
-    }
-    $("copy").textContent = "Copied";
-    setTimeout(() => ($("copy").textContent = "Copy the command"), 1200);
-  });
+  for (const button of [$("copy"), $("copy-diagram")]) {
+    const label = button.textContent;
+    button.addEventListener("click", async () => {
+      const source = $(button.dataset.source);
+      try {
+        await navigator.clipboard.writeText(source.value);
+      } catch (e) {
+        source.select();
+        document.execCommand("copy");
+      }
+      button.textContent = "Copied";
+      setTimeout(() => (button.textContent = label), 1200);
+    });
+  }
 }
 
 async function start() {
