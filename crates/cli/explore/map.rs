@@ -59,7 +59,7 @@ impl Maps {
         if let Some((_, json)) = self
             .done
             .lock()
-            .map_err(|_| ApiError::bad("map cache poisoned"))?
+            .map_err(|_| ApiError::internal("the map cache was poisoned by a failed computation"))?
             .iter()
             .find(|(s, _)| s == step)
         {

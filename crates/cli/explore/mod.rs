@@ -14,6 +14,7 @@
 
 mod api;
 mod map;
+mod request;
 
 use crate::args::ExploreArgs;
 use crate::input;

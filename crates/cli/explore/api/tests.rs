@@ -2,6 +2,7 @@
 //! code (`run::compute`, clap) and the engines called directly.
 
 use super::*;
+use crate::args::RunArgs;
 use axum::body::{Body, to_bytes};
 use axum::http::Request;
 use impact_model::Bilayer;
