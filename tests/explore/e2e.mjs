@@ -96,7 +96,7 @@ try {
     const e = document.getElementById("n-e").textContent;
     return e !== before && e !== "" && document.getElementById("busy").hidden;
   }, shown);
-  const scene = await page.evaluate(() => sceneJson().scene);
+  const scene = await page.evaluate(() => window.impactExplore.sceneJson().scene);
   const api = await (await fetch(`${url}api/run`, { method: "POST", body: JSON.stringify(scene) })).json();
   const shown3 = await page.textContent("#n-e");
   check("three layers: the numbers change", scene.layers.length === 3 && shown3 !== shown, `${shown3}`);
@@ -143,7 +143,7 @@ try {
   await page.fill('#layers tr[data-layer="2"] input[data-key="viscValue"]', "0.72");
   await page.waitForFunction(() => document.getElementById("n-engine").textContent === "chain", null, { timeout: 120000 });
   await page.waitForFunction(() => document.getElementById("busy").hidden, null, { timeout: 120000 });
-  const viscous = await page.evaluate(() => sceneJson().scene);
+  const viscous = await page.evaluate(() => window.impactExplore.sceneJson().scene);
   const viscousApi = await (await fetch(`${url}api/run`, { method: "POST", body: JSON.stringify(viscous) })).json();
   check("a viscous scene runs on the chain, as the API does", (await page.textContent("#n-e")) === viscousApi.restitution.toFixed(12),
     `${await page.textContent("#n-e")} vs ${viscousApi.restitution}`);

@@ -19,7 +19,7 @@ use super::request::{
     CAPS, DIAGRAM_KEYS, DIAGRAM_SWITCHES, RUN_KEYS, RawQuery, body_scene, cap, capped_run,
     command_line, parse, words,
 };
-use super::{APP_CSS, APP_JS, index_page};
+use super::{APP_CSS, SCRIPTS, index_page};
 use crate::args::{Command, DiagramArgs};
 use axum::extract::{DefaultBodyLimit, Query, State};
 use axum::http::{HeaderValue, StatusCode, header};
@@ -100,17 +100,19 @@ type Reply = Result<Response, ApiError>;
 
 /// The explorer's routes.
 pub fn router(app: App) -> Router {
-    Router::new()
-        .route("/", get(|| async { Html(index_page()) }))
-        .route(
-            "/app.js",
-            get(|| async {
+    let mut router = Router::new().route("/", get(|| async { Html(index_page()) }));
+    for (path, script) in SCRIPTS {
+        router = router.route(
+            path,
+            get(move || async move {
                 (
                     [(header::CONTENT_TYPE, "text/javascript; charset=utf-8")],
-                    APP_JS,
+                    script,
                 )
             }),
-        )
+        );
+    }
+    router
         .route(
             "/app.css",
             get(|| async { ([(header::CONTENT_TYPE, "text/css; charset=utf-8")], APP_CSS) }),

@@ -26,8 +26,15 @@ use std::net::SocketAddr;
 /// fetched from anywhere else. The style sheet is linked from the body, so
 /// its rules come after the shell's shared ones and override them.
 pub const BODY_HTML: &str = include_str!("page/body.html");
-/// The page's script.
-pub const APP_JS: &str = include_str!("page/app.js");
+/// The page's scripts, JavaScript modules: the entry (`app.js`: wiring),
+/// the state kept in the URL, the map, the scene editor and the point.
+pub const SCRIPTS: [(&str, &str); 5] = [
+    ("/app.js", include_str!("page/app.js")),
+    ("/state.js", include_str!("page/state.js")),
+    ("/map.js", include_str!("page/map.js")),
+    ("/editor.js", include_str!("page/editor.js")),
+    ("/point.js", include_str!("page/point.js")),
+];
 /// The page's style.
 pub const APP_CSS: &str = include_str!("page/app.css");
 
