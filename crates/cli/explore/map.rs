@@ -12,10 +12,27 @@ use std::sync::{Arc, Mutex};
 /// The grid steps the page asks for, coarse to the paper's.
 pub const STEPS: [&str; 4] = ["0.05", "0.02", "0.01", "0.005"];
 
-/// Maps computed so far, as the JSON sent, by step.
-#[derive(Default)]
+/// Maps computed so far, as the JSON sent, by step, and the threads that
+/// compute them: a pool of their own, so a map never queues behind the
+/// chains a viscous run spreads over rayon's global pool (the operating
+/// system shares the cores between the two instead).
 pub struct Maps {
     done: Mutex<Vec<(String, Arc<String>)>>,
+    pool: Option<rayon::ThreadPool>,
+}
+
+impl Default for Maps {
+    fn default() -> Self {
+        Self {
+            done: Mutex::default(),
+            // without a pool of its own (no thread could be started) the
+            // map runs on the global one
+            pool: rayon::ThreadPoolBuilder::new()
+                .thread_name(|i| format!("explore-map-{i}"))
+                .build()
+                .ok(),
+        }
+    }
 }
 
 /// Sec. VI's lines: `alpha = 1/10` (where `1 + 2 R12 = 0`), the upper
@@ -65,7 +82,10 @@ impl Maps {
         {
             return Ok(Arc::clone(json));
         }
-        let json = Arc::new(compute(step)?);
+        let json = Arc::new(match &self.pool {
+            Some(pool) => pool.install(|| compute(step))?,
+            None => compute(step)?,
+        });
         if let Ok(mut done) = self.done.lock() {
             done.push((step.to_string(), Arc::clone(&json)));
         }
