@@ -44,13 +44,7 @@ pub fn write_table(
     for line in comment.lines() {
         writeln!(out, "# {line}")?;
     }
-    let mut w = csv::WriterBuilder::new()
-        .terminator(csv::Terminator::Any(b'\n'))
-        .from_writer(out);
-    for e in entries {
-        w.serialize(e)?;
-    }
-    w.flush()
+    impact_output::write_csv(out, entries)
 }
 
 /// Reads a calibration table: lines starting with `#` are comments, then
