@@ -183,17 +183,32 @@ pub(crate) fn edge_dt2_acceleration(wall: f64, e: &Edge, u: impl Fn(usize) -> f6
     above - below
 }
 
-/// `d += c (u_below - 2 u + u_above)` over `start..end` (`start >= 1`,
-/// `end < len`): equal-length slices, so no bounds checks and packed SIMD.
+/// `d += c (u_below - 2 u + u_above)`, `u' = u + d` over `start..end`
+/// (`start >= 1`, `end < len`): equal-length slices, so no bounds checks
+/// and packed SIMD. The run's two halves go side by side in one loop (ten
+/// slices, still of one length): a trip then does four masses in two
+/// registers each way, so the loop's counting and branching cost half as
+/// much per mass (6.75 instructions a mass instead of 7.5); an odd run's
+/// last mass goes alone.
 #[inline]
 fn layer_run(u: &[f64], d: &mut [f64], next: &mut [f64], start: usize, end: usize, c: f64) {
-    let below = &u[start - 1..end - 1];
-    let mid = &u[start..end];
-    let above = &u[start + 1..end + 1];
-    let d = &mut d[start..end];
-    let next = &mut next[start..end];
-    for ((((n, d), &b), &m), &a) in next.iter_mut().zip(d).zip(below).zip(mid).zip(above) {
+    let half = (end - start) / 2;
+    let (d0, d1) = d[start..end].split_at_mut(half);
+    let (n0, n1) = next[start..end].split_at_mut(half);
+    let (b0, b1) = u[start - 1..end - 1].split_at(half);
+    let (m0, m1) = u[start..end].split_at(half);
+    let (a0, a1) = u[start + 1..end + 1].split_at(half);
+    let first = n0.iter_mut().zip(d0).zip(b0).zip(m0).zip(a0);
+    let second = n1.iter_mut().zip(d1.iter_mut()).zip(b1).zip(m1).zip(a1);
+    for (((((n, d), &b), &m), &a), ((((n1, d1), &b1), &m1), &a1)) in first.zip(second) {
         *d += c * ((b - m) + (a - m));
         *n = m + *d;
+        *d1 += c * ((b1 - m1) + (a1 - m1));
+        *n1 = m1 + *d1;
+    }
+    if (end - start) % 2 == 1 {
+        let j = end - 1;
+        d[j] += c * ((u[j - 1] - u[j]) + (u[j + 1] - u[j]));
+        next[j] = u[j] + d[j];
     }
 }
