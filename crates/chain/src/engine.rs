@@ -304,7 +304,9 @@ impl ChainEngine {
             edges: &self.edges,
             wall: self.wall_spring,
         };
-        springs.beeman_velocities(&self.u, &mut self.v, &mut self.a, &mut self.a_prev, dt);
+        springs.beeman_velocities(&self.u, &mut self.v, &self.a, &mut self.a_prev, dt);
+        // `a_prev` now holds the new accelerations: the shift is a swap
+        std::mem::swap(&mut self.a, &mut self.a_prev);
         let mut wall_impulse = 0.0;
         if let Some(d) = &mut self.dashpots {
             wall_impulse += d.step(
@@ -493,8 +495,9 @@ struct Springs<'a> {
 
 impl Springs<'_> {
     /// New spring accelerations from the new positions, then Beeman
-    /// velocities `v += dt (2 a_new + 5 a - a_prev) / 6`; the accelerations
-    /// shift by one. The wall spring (element 0) pushes only while
+    /// velocities `v += dt (2 a_new + 5 a - a_prev) / 6`; `a_new` goes
+    /// into `a_prev`, which the caller then swaps with `a` (one store per
+    /// mass instead of two for the shift). The wall spring (element 0) pushes only while
     /// compressed.
     ///
     /// Inside a run the acceleration is `c ((u_above - u) - (u - u_below))`
@@ -502,14 +505,7 @@ impl Springs<'_> {
     /// arithmetic, so the loop compiles to packed SIMD (`mulpd`/`subpd`)
     /// with no per-mass `k` or `1 / m` to load; the edge masses (mass 0,
     /// layer tops, the top) take the general formula, outside the loop.
-    fn beeman_velocities(
-        &self,
-        u: &[f64],
-        v: &mut [f64],
-        a: &mut [f64],
-        a_prev: &mut [f64],
-        dt: f64,
-    ) {
+    fn beeman_velocities(&self, u: &[f64], v: &mut [f64], a: &[f64], a_prev: &mut [f64], dt: f64) {
         let c = dt / 6.0;
         for r in self.runs {
             let (start, end, km) = (r.start, r.end, r.c);
@@ -518,31 +514,25 @@ impl Springs<'_> {
                 &u[start..end],
                 &u[start + 1..end + 1],
             );
-            let (v, a, ap) = (
-                &mut v[start..end],
-                &mut a[start..end],
-                &mut a_prev[start..end],
-            );
+            let (v, a, ap) = (&mut v[start..end], &a[start..end], &mut a_prev[start..end]);
             for (((((v, a), ap), &lo), &mid), &hi) in v
                 .iter_mut()
-                .zip(a.iter_mut())
+                .zip(a)
                 .zip(ap.iter_mut())
                 .zip(lo)
                 .zip(mid)
                 .zip(hi)
             {
                 let acc = km * ((hi - mid) - (mid - lo));
-                *v += c * (2.0 * acc + 5.0 * *a - *ap);
-                *ap = *a;
-                *a = acc;
+                *v += c * (2.0 * acc + 5.0 * a - *ap);
+                *ap = acc;
             }
         }
         for e in self.edges {
             let j = e.mass;
             let acc = edge_dt2_acceleration(self.wall, e, |i| u[i]);
             v[j] += c * (2.0 * acc + 5.0 * a[j] - a_prev[j]);
-            a_prev[j] = a[j];
-            a[j] = acc;
+            a_prev[j] = acc;
         }
     }
 }
