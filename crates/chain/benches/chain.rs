@@ -64,7 +64,7 @@ fn kernels(c: &mut Criterion) {
                 )
             });
         }
-        // the elastic kernel alone: Beeman's positions as Verlet's, two arrays
+        // the elastic kernel alone: Beeman's positions as Verlet's, one sweep a step
         let rod = Bilayer::new(0.4, 0.05).unwrap().scene().validate().unwrap();
         let layout = impact_chain::ChainLayout::new(&rod, masses).unwrap();
         group.bench_function("elastic_verlet_kernel", |b| {

@@ -3,7 +3,7 @@
 //! A viscous chain keeps Beeman's whole state (`u, v, a, a_prev`): its
 //! dashpots act on velocities. An elastic chain needs positions only (the
 //! wall impulse, the contacts and the escape decision depend on nothing
-//! else), so it runs [`VerletChain`], Beeman's positions on two arrays, and
+//! else), so it runs [`VerletChain`], Beeman's positions as Verlet's, and
 //! rebuilds Beeman's velocities when they are asked for.
 
 use crate::config::{ChainConfig, ChainStop};

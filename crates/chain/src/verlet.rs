@@ -10,7 +10,7 @@
 //! the size of `u` to get a step's motion and drifted from Beeman by `2e-10`
 //! (relative) in `10^4` steps; the summed form keeps the motion in its own
 //! array, as Beeman keeps `v`. Beeman's velocities, when asked for (output,
-//! the escape bound), are rebuilt from the two arrays:
+//! the escape bound), are rebuilt from the positions and the motion:
 //! `v(n) = d(n) / dt + dt (2 a(n) + a(n-1)) / 6`.
 //!
 //! Inside a layer every mass has the same `k / m`, so a step is
@@ -152,7 +152,7 @@ impl VerletChain {
         c * ((u(j - 1) - u(j)) + (u(j + 1) - u(j)))
     }
 
-    /// Beeman's velocities now, rebuilt from the two arrays:
+    /// Beeman's velocities now, rebuilt from the positions and the motion:
     /// `v(n) = d(n) / dt + dt (2 a(n) + a(n-1)) / 6`.
     pub fn velocities(&self) -> Vec<f64> {
         (0..self.now.len()).map(|j| self.velocity(j)).collect()
