@@ -3,9 +3,9 @@
 use crate::args::{DiagramArgs, DiagramEngine};
 use crate::input;
 use crate::output::write_atomically;
-use anyhow::Context;
 use impact_diagram::{Diagram, DiagramOptions, chain_run, exact_run, page};
 use impact_model::Scene;
+use impact_wave::WaveError;
 use std::io::Write;
 
 /// Checks the window and scale flags.
@@ -79,7 +79,14 @@ pub fn build(a: &DiagramArgs, given: Option<Scene>) -> anyhow::Result<(Diagram, 
     }
     let chain_label = format!("chain, N = {}", a.masses);
     let (mut pictures, outcome, wall) = if a.engine == DiagramEngine::Wave || a.side_by_side {
-        let run = exact_run(&rod).context("the exact engine could not finish")?;
+        let run = exact_run(&rod).map_err(|e| match e {
+            WaveError::EventLimit { .. } => anyhow::anyhow!(
+                "the diagram draws every front, and this scene's fronts multiply beyond {} events \
+                 (impact run merges them and still answers); draw the chain instead: --engine chain",
+                impact_diagram::MAX_DRAWN_EVENTS
+            ),
+            e => anyhow::Error::new(e).context("the exact engine could not finish"),
+        })?;
         (
             vec![("exact (front tracing)".to_string(), run.picture)],
             run.outcome,

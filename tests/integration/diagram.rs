@@ -108,3 +108,26 @@ fn bad_diagram_input() {
     }
     assert!(files_in(&dir).is_empty(), "{:?}", files_in(&dir));
 }
+
+/// Where fronts multiply without bound the diagram, which draws every
+/// front, stops at its event cap at once (exit 1, naming the way out)
+/// instead of recording fronts until memory runs out; nothing is written.
+#[test]
+fn a_scene_whose_fronts_multiply_is_refused_quickly() {
+    let dir = scratch("diagram-multiply");
+    let out = dir.join("d.svg");
+    let o = impact(&[
+        "diagram",
+        "data/scenes/steel-under-rubber.json",
+        "--out",
+        &out.to_string_lossy(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("fronts multiply beyond 1000000 events"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(stderr(&o).contains("--engine chain"));
+    assert!(files_in(&dir).is_empty(), "{:?}", files_in(&dir));
+}

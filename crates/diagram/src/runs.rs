@@ -19,13 +19,23 @@ pub struct Run {
     pub wall: Vec<(f64, f64)>,
 }
 
-/// The exact engine with fronts and parents recorded.
+/// Events an exact run for a picture may take. A diagram draws every front
+/// with its parents, so it cannot merge fronts as `impact run` does where
+/// they multiply without bound (a stiff layer ringing under a soft one);
+/// there the run stops here, with the engine's `EventLimit`, instead of
+/// recording fronts until memory runs out. The hard corner of the paper's
+/// grid takes 28,204 events.
+pub const MAX_DRAWN_EVENTS: u64 = 1_000_000;
+
+/// The exact engine with fronts and parents recorded, at most
+/// [`MAX_DRAWN_EVENTS`] events.
 pub fn exact_run(rod: &Rod) -> Result<Run, WaveError> {
     let config = WaveConfig {
         record: Record {
             wall: true,
             fronts: true,
         },
+        max_events: MAX_DRAWN_EVENTS,
         ..WaveConfig::default()
     };
     let mut e = WaveEngine::new(rod, config)?;

@@ -274,6 +274,24 @@ async fn the_diagram_is_the_renderers_with_its_fronts() {
     );
 }
 
+/// A scene whose fronts multiply (a stiff plate ringing under rubber):
+/// `impact run` merges them and answers, the diagram, which draws every
+/// front, stops at its cap with a message instead of filling memory.
+#[tokio::test]
+async fn a_diagram_whose_fronts_multiply_is_refused_quickly() {
+    let text = include_str!("../../../../data/scenes/steel-under-rubber.json");
+    let (status, _, json) = post("/api/run", text).await;
+    assert_eq!(status, StatusCode::OK, "{json}");
+    let (status, _, json) = post("/api/diagram", text).await;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{json}");
+    let error = json["error"].as_str().unwrap();
+    assert!(
+        error.contains("fronts multiply beyond 1000000 events"),
+        "{error}"
+    );
+    assert!(error.contains("--engine chain"), "{error}");
+}
+
 #[tokio::test]
 async fn the_map_is_the_sweep_of_the_canonical_bilayer() {
     let (status, _, json) = get("/api/map?step=0.05").await;

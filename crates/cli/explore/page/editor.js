@@ -3,6 +3,13 @@
 import { $, live, numberOrNull, state } from "./state.js";
 import { schedule } from "./point.js";
 
+// A number as the field shows it: SI moduli (2.07e+11) in exponent form,
+// so a narrow field shows their leading digits; text typed is kept as typed.
+function shown(v) {
+  const a = Math.abs(v);
+  return typeof v === "number" && (a >= 1e5 || (a > 0 && a < 1e-3)) ? v.toExponential() : v;
+}
+
 export function renderLayers() {
   const body = $("layers").querySelector("tbody");
   body.innerHTML = "";
@@ -19,9 +26,9 @@ export function renderLayers() {
       .join("");
     tr.innerHTML = `<td>${k + 1}${k === 0 ? " (bottom)" : ""}</td>
       <td><select data-key="material">${opts}</select></td>
-      <td><input type="number" step="any" data-key="length" value="${layer.length}"></td>
-      <td><input type="number" step="any" data-key="modulus" value="${layer.modulus}"></td>
-      <td><input type="number" step="any" data-key="density" value="${layer.density}"></td>
+      <td><input type="number" step="any" data-key="length" value="${shown(layer.length)}"></td>
+      <td><input type="number" step="any" data-key="modulus" value="${shown(layer.modulus)}"></td>
+      <td><input type="number" step="any" data-key="density" value="${shown(layer.density)}"></td>
       <td><select data-key="visc">
           <option value="none" ${layer.visc === "none" ? "selected" : ""} title="elastic">elastic</option>
           <option value="tau" ${layer.visc === "tau" ? "selected" : ""} title="relaxation time tau = eta / E">τ</option>

@@ -130,9 +130,21 @@ export async function update(diagramOnly) {
       fillEvents(null);
     } else {
       busy(true, "drawing…");
-      const d = await answer(await diagramRequest(controller.signal, live.lastRun));
-      live.lastDiagram = d.body;
-      showDiagram(d.body);
+      // no stale picture beside new numbers while (or if) none comes
+      live.lastDiagram = null;
+      const d = await answer(await diagramRequest(controller.signal, live.lastRun)).catch((e) => {
+        if (!(e instanceof InputError)) throw e;
+        const note = document.createElement("p");
+        note.className = "sub";
+        note.textContent = `No diagram: ${e.message}`;
+        $("diagram").replaceChildren(note);
+        fillEvents(null);
+        return null;
+      });
+      if (d) {
+        live.lastDiagram = d.body;
+        showDiagram(d.body);
+      }
     }
   } catch (e) {
     if (e.name === "AbortError") return;
