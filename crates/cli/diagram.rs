@@ -59,10 +59,7 @@ pub fn diagram(a: DiagramArgs) -> anyhow::Result<()> {
 /// the scene `a` names when the caller already holds one (the explorer);
 /// writes nothing.
 pub fn build(a: &DiagramArgs, given: Option<Scene>) -> anyhow::Result<(Diagram, DiagramOptions)> {
-    let (scene, _, name) = match given {
-        Some(scene) => (scene, None, "scene".to_string()),
-        None => a.subject.load()?,
-    };
+    let (scene, _, name) = a.subject.load(given)?;
     let rod = scene.validate().map_err(|e| input(e.to_string()))?;
     let ext = a.out.extension().and_then(|e| e.to_str()).unwrap_or("");
     if !matches!(ext, "svg" | "png" | "html") {

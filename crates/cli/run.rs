@@ -24,9 +24,16 @@ struct WallTraceLine {
 
 /// Reads and validates a scene file; every failure is an input error.
 pub fn read_scene(path: &std::path::Path) -> anyhow::Result<Scene> {
+    read_scene_text(path).map(|(_, scene)| scene)
+}
+
+/// A scene file's text and the scene it holds; every failure is an input
+/// error.
+pub fn read_scene_text(path: &std::path::Path) -> anyhow::Result<(String, Scene)> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| input(format!("cannot read scene {}: {e}", path.display())))?;
-    Scene::from_json(&text).map_err(|e| input(format!("{}: {e}", path.display())))
+    let scene = Scene::from_json(&text).map_err(|e| input(format!("{}: {e}", path.display())))?;
+    Ok((text, scene))
 }
 
 /// What one `impact run` computed: the title of its summary, the outcome
@@ -70,10 +77,7 @@ pub fn compute(a: &RunArgs, given: Option<Scene>) -> anyhow::Result<Computed> {
             "--tau1/--tau2/--e1/--e2 apply to --x/--alpha only: give viscosity in the scene file",
         ));
     }
-    let (scene, bilayer, name) = match given {
-        Some(scene) => (scene, None, "(explorer)".to_string()),
-        None => a.subject.load()?,
-    };
+    let (scene, bilayer, name) = a.subject.load(given)?;
     let (scene, title) = match bilayer {
         Some(b) => (
             a.viscosity.viscosity().scene(b),

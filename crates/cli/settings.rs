@@ -143,9 +143,15 @@ impl WaveArgs {
 impl SceneArgs {
     /// The scene file read and parsed, or the canonical bilayer (not yet
     /// validated), with a title. Every failure is an input error.
+    /// `given` stands in for them when the caller already holds the scene
+    /// (the explorer: a scene sent over HTTP, never a file).
     pub fn load(
         &self,
+        given: Option<impact_model::Scene>,
     ) -> anyhow::Result<(impact_model::Scene, Option<impact_model::Bilayer>, String)> {
+        if let Some(scene) = given {
+            return Ok((scene, None, "scene".to_string()));
+        }
         match (&self.scene, self.x, self.alpha) {
             (Some(path), _, _) => Ok((
                 crate::run::read_scene(path)?,

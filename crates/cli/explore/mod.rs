@@ -41,12 +41,10 @@ pub const APP_CSS: &str = include_str!("page/app.css");
 pub fn explore(a: ExploreArgs) -> anyhow::Result<()> {
     let scene = match &a.scene {
         Some(path) => {
-            let scene = crate::run::read_scene(path)?;
+            let (text, scene) = crate::run::read_scene_text(path)?;
             scene
                 .validate()
                 .map_err(|e| input(format!("{}: {e}", path.display())))?;
-            let text = std::fs::read_to_string(path)
-                .with_context(|| format!("cannot read {}", path.display()))?;
             Some(serde_json::from_str::<serde_json::Value>(&text)?)
         }
         None => None,
