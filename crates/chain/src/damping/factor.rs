@@ -1,0 +1,457 @@
+//! The blocked `L D L^T` sweeps of the dashpot step's pentadiagonal
+//! solve: the factor of `P = A M^-1 A`, its sweeps run as `LANES`
+//! interleaved blocks, and the homogeneous solutions (`Tail`) that fix the
+//! blocks up exactly.
+
+use super::GAMMA;
+
+/// Blocks whose sweeps run side by side. A sweep is a linear recurrence,
+/// one multiply and one subtraction on its critical path per mass (6
+/// cycles on a current core), while the core can issue the whole step of
+/// a mass in about one: independent recurrences, one per block, fill that
+/// gap (see [`Factor`]).
+pub(super) const LANES: usize = 4;
+
+/// A chain shorter than `LANES * MIN_LANE` masses sweeps in one piece: its
+/// fix-ups would cost about what the blocks save.
+const MIN_LANE: usize = 64;
+
+/// A fix-up term is dropped where it is below this fraction of the value it
+/// corrects: far below rounding, so the blocked sweeps give the one-piece
+/// sweep's result to rounding.
+const NEGLIGIBLE: f64 = 1e-20;
+
+/// Homogeneous solutions below this are flushed to zero: they only decay
+/// further, and subnormal numbers are slow.
+const FLUSH: f64 = 1e-200;
+
+/// How the homogeneous solutions of a sweep's recurrence carry the two
+/// values just outside a block into it.
+///
+/// A block's sweep is started from zero; by linearity the true values in
+/// it are the local ones plus `p1 h1 + p2 h2`, where `p1`, `p2` are the
+/// true values at the two masses just outside the block (on the side the
+/// sweep comes from) and `h1`, `h2` the recurrence's solutions with no
+/// right-hand side started from `(1, 0)` and `(0, 1)` there. They depend on
+/// the factorisation only, and decay geometrically into the block (`P` is
+/// diagonally dominant; inside an elastic layer `L` is the identity and
+/// they vanish at once), so they are stored only while they matter, plus
+/// their exact values at the block's far edge, which carry the true values
+/// on to the next block.
+#[derive(Debug, Clone, Default)]
+struct Tail {
+    /// `h1`, `h2` at the block's masses nearest the edge they start from,
+    /// in mass order (both of one length).
+    near: [Vec<f64>; 2],
+    /// `h1`, `h2` at the block's two masses farthest from that edge, in the
+    /// order the sweep carries them (nearest the next block first).
+    far: [[f64; 2]; 2],
+}
+
+impl Tail {
+    /// The true values at the block's far edge from the local ones `ends`
+    /// and the true values `p` outside its near edge.
+    fn carry(&self, ends: [f64; 2], p: [f64; 2]) -> [f64; 2] {
+        let [h1, h2] = self.far;
+        [
+            ends[0] + (p[0] * h1[0] + p[1] * h2[0]),
+            ends[1] + (p[0] * h1[1] + p[1] * h2[1]),
+        ]
+    }
+
+    /// Adds `p1 h1 + p2 h2` to `x` (the block's masses nearest the edge,
+    /// in mass order): three equal-length slices, no index arithmetic, so
+    /// the loop compiles to packed `mulpd`/`addpd`.
+    fn fix(&self, x: &mut [f64], p: [f64; 2]) {
+        let [h1, h2] = &self.near;
+        for ((x, a), b) in x.iter_mut().zip(h1).zip(h2) {
+            *x += p[0] * a + p[1] * b;
+        }
+    }
+}
+
+/// `L D L^T` factors of `P = A M^-1 A`, `A = M - g h D` for one wall
+/// dashpot constant, stored for streaming sweeps.
+///
+/// The sweeps of a solve are latency-bound recurrences. A long chain is
+/// cut into [`LANES`] blocks of `lane` masses (the last takes the rest),
+/// each block swept from zero, all in one loop so that their recurrences
+/// overlap; the blocks' [`Tail`]s then add, block after block, what the
+/// masses before them contribute. That is exact algebra, not an iteration:
+/// the result is the one-piece sweep's to rounding (tested against
+/// [`Factor::solve`]).
+#[derive(Debug, Clone)]
+pub(super) struct Factor {
+    /// `L[i][i-1]`, `L[i][i-2]`, two zeros past the end: the backward
+    /// sweep reads `L[j+1][j]`, `L[j+2][j]` as `l1[j+1]`, `l2[j+2]`.
+    l1: Vec<f64>,
+    l2: Vec<f64>,
+    /// `1 / D[i]`.
+    inv_d: Vec<f64>,
+    /// Masses per block, 0 for a one-piece sweep (at least 2 otherwise).
+    lane: usize,
+    /// Step `i` of the forward sweep in the blocks: `[l1, l2]` of masses
+    /// `k lane + i`, `k < LANES`.
+    fwd: Vec<[[f64; LANES]; 2]>,
+    /// Step `i` of the backward sweep: `[1 / d, l1[j + 1], l2[j + 2]]` of
+    /// masses `j = k lane + i`.
+    bwd: Vec<[[f64; LANES]; 3]>,
+    /// Forward sweep: blocks `1..LANES`, from their bottoms up.
+    down: Vec<Tail>,
+    /// Backward sweep: blocks `0..LANES - 1`, from their tops down.
+    up: Vec<Tail>,
+    /// `M A^-1 e_0` while not negligible: its dot product with `v` is the
+    /// first stage's velocity of mass 0, `V1_0 = (A^-1 M v)_0`, which the
+    /// wall impulse needs. It decays from mass 0 like the sweeps' tails.
+    first_stage_0: Vec<f64>,
+}
+
+/// The block length for `n` masses: 0 (one piece) below `LANES * MIN_LANE`.
+pub(super) fn lane_length(n: usize) -> usize {
+    if n >= LANES * MIN_LANE { n / LANES } else { 0 }
+}
+
+impl Factor {
+    /// Factorises for dashpot constants `c` (element `j` below mass `j`),
+    /// the wall element's replaced by `wall`, over a step `h`, cut into
+    /// blocks of `lane` masses (0: one piece; otherwise `2 <= lane`,
+    /// `LANES * lane <= n`).
+    pub(super) fn with_lane(mass: &[f64], c: &[f64], h: f64, wall: f64, lane: usize) -> Self {
+        let n = mass.len();
+        let gh = GAMMA * h;
+        let below = |i: usize| if i == 0 { wall } else { c[i] };
+        let above = |i: usize| if i + 1 < n { c[i + 1] } else { 0.0 };
+        // A: diagonal and super-diagonal
+        let a: Vec<f64> = (0..n)
+            .map(|i| mass[i] + gh * (below(i) + above(i)))
+            .collect();
+        let b: Vec<f64> = (0..n).map(|i| -gh * above(i)).collect();
+        // P = A M^-1 A: diagonal, first and second off-diagonals
+        let p0: Vec<f64> = (0..n)
+            .map(|i| {
+                let left = if i > 0 {
+                    b[i - 1] * b[i - 1] / mass[i - 1]
+                } else {
+                    0.0
+                };
+                let right = if i + 1 < n {
+                    b[i] * b[i] / mass[i + 1]
+                } else {
+                    0.0
+                };
+                a[i] * a[i] / mass[i] + left + right
+            })
+            .collect();
+        let p1: Vec<f64> = (0..n)
+            .map(|i| {
+                if i + 1 < n {
+                    a[i] * b[i] / mass[i] + b[i] * a[i + 1] / mass[i + 1]
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let p2: Vec<f64> = (0..n)
+            .map(|i| {
+                if i + 2 < n {
+                    b[i] * b[i + 1] / mass[i + 1]
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let (mut l1, mut l2, mut d) = (vec![0.0; n + 2], vec![0.0; n + 2], vec![0.0; n]);
+        for i in 0..n {
+            if i >= 2 {
+                l2[i] = p2[i - 2] / d[i - 2];
+            }
+            if i >= 1 {
+                let back = if i >= 2 {
+                    l2[i] * l1[i - 1] * d[i - 2]
+                } else {
+                    0.0
+                };
+                l1[i] = (p1[i - 1] - back) / d[i - 1];
+            }
+            let d1 = if i >= 1 {
+                l1[i] * l1[i] * d[i - 1]
+            } else {
+                0.0
+            };
+            let d2 = if i >= 2 {
+                l2[i] * l2[i] * d[i - 2]
+            } else {
+                0.0
+            };
+            d[i] = p0[i] - d1 - d2;
+        }
+        let mut f = Self {
+            inv_d: d.iter().map(|d| 1.0 / d).collect(),
+            l1,
+            l2,
+            lane,
+            fwd: vec![],
+            bwd: vec![],
+            down: vec![],
+            up: vec![],
+            first_stage_0: vec![],
+        };
+        if lane > 0 {
+            let at = |x: &[f64], shift: usize, i: usize| -> [f64; LANES] {
+                std::array::from_fn(|k| x[k * lane + i + shift])
+            };
+            f.fwd = (0..lane)
+                .map(|i| [at(&f.l1, 0, i), at(&f.l2, 0, i)])
+                .collect();
+            f.bwd = (0..lane)
+                .map(|i| [at(&f.inv_d, 0, i), at(&f.l1, 1, i), at(&f.l2, 2, i)])
+                .collect();
+            f.down = (1..LANES).map(|k| f.down_tail(k)).collect();
+            f.up = (0..LANES - 1).map(|k| f.up_tail(k)).collect();
+        }
+        // A^-1 e_0 = P^-1 A M^-1 e_0, and A^-1 is symmetric
+        let mut w = vec![0.0; n];
+        w[0] = a[0] / mass[0];
+        if n > 1 {
+            w[1] = b[0] / mass[0];
+        }
+        f.solve(&mut w);
+        let w: Vec<f64> = w.iter().zip(mass).map(|(w, m)| w * m).collect();
+        let largest = w.iter().fold(0.0f64, |x, w| x.max(w.abs()));
+        let keep = w
+            .iter()
+            .rposition(|w| w.abs() > NEGLIGIBLE * largest)
+            .map_or(0, |i| i + 1);
+        f.first_stage_0 = w[..keep].to_vec();
+        f
+    }
+
+    /// Masses `start..end` of block `k`.
+    fn block(&self, k: usize) -> (usize, usize) {
+        let end = if k + 1 == LANES {
+            self.inv_d.len()
+        } else {
+            (k + 1) * self.lane
+        };
+        (k * self.lane, end)
+    }
+
+    /// The forward sweep's tail of block `k >= 1`: `y_i = -l1_i y_{i-1} -
+    /// l2_i y_{i-2}` from `(y_{s-1}, y_{s-2}) = (1, 0)` and `(0, 1)`. The
+    /// true `y_{s-1}`, `y_{s-2}` it multiplies are of the size of `d_{s-1}`,
+    /// `d_{s-2}` (`y = D L^T x`), and `y_i` of `d_i`, which scales the cut.
+    fn down_tail(&self, k: usize) -> Tail {
+        let (start, end) = self.block(k);
+        let mut tail = Tail::default();
+        let mut keep = 0;
+        for (q, (near, far)) in tail.near.iter_mut().zip(&mut tail.far).enumerate() {
+            let scale = 1.0 / self.inv_d[start - 1 - q];
+            let (mut y1, mut y2) = if q == 0 { (1.0, 0.0) } else { (0.0, 1.0) };
+            for i in start..end {
+                let mut y = (0.0 - self.l2[i] * y2) - self.l1[i] * y1;
+                if y.abs() < FLUSH {
+                    y = 0.0;
+                }
+                near.push(y);
+                if (y * scale * self.inv_d[i]).abs() > NEGLIGIBLE {
+                    keep = keep.max(near.len());
+                }
+                y2 = y1;
+                y1 = y;
+            }
+            *far = [y1, y2];
+        }
+        for near in &mut tail.near {
+            near.truncate(keep);
+        }
+        tail
+    }
+
+    /// The backward sweep's tail of block `k <= LANES - 2`: `z_j = -l1_{j+1}
+    /// z_{j+1} - l2_{j+2} z_{j+2}` from `(z_e, z_{e+1}) = (1, 0)` and
+    /// `(0, 1)`; `z` are velocities, all of one size.
+    fn up_tail(&self, k: usize) -> Tail {
+        let (start, end) = self.block(k);
+        let mut tail = Tail::default();
+        let mut keep = 0;
+        for (q, (near, far)) in tail.near.iter_mut().zip(&mut tail.far).enumerate() {
+            let (mut z1, mut z2) = if q == 0 { (1.0, 0.0) } else { (0.0, 1.0) };
+            for j in (start..end).rev() {
+                let mut z = (0.0 - self.l2[j + 2] * z2) - self.l1[j + 1] * z1;
+                if z.abs() < FLUSH {
+                    z = 0.0;
+                }
+                near.push(z);
+                if z.abs() > NEGLIGIBLE {
+                    keep = keep.max(near.len());
+                }
+                z2 = z1;
+                z1 = z;
+            }
+            *far = [z1, z2];
+        }
+        for near in &mut tail.near {
+            near.truncate(keep);
+            near.reverse();
+        }
+        tail
+    }
+
+    /// Solves `P x = r` in place, one mass at a time (set-up, and the
+    /// reference the blocked sweeps are tested against).
+    pub(super) fn solve(&self, x: &mut [f64]) {
+        let n = x.len();
+        let (mut y1, mut y2) = (0.0, 0.0);
+        for ((x, l1), l2) in x.iter_mut().zip(&self.l1).zip(&self.l2) {
+            let y = (*x - l2 * y2) - l1 * y1;
+            *x = y;
+            y2 = y1;
+            y1 = y;
+        }
+        let (u1, u2) = (&self.l1[1..n + 1], &self.l2[2..n + 2]);
+        let (mut x1, mut x2) = (0.0, 0.0);
+        for (((x, d), u1), u2) in x.iter_mut().zip(&self.inv_d).zip(u1).zip(u2).rev() {
+            let z = (*x * d - u2 * x2) - u1 * x1;
+            *x = z;
+            x2 = x1;
+            x1 = z;
+        }
+    }
+
+    /// Solves `P x = r`, `t` (`lane` long) the sweeps' scratch; `r` is
+    /// overwritten.
+    ///
+    /// The blocks' recurrences run in the lanes of `[f64; LANES]` arrays:
+    /// the forward sweep gathers `r` from the blocks into `t`, the backward
+    /// sweep scatters its result into `x`, and in between every operation
+    /// is elementwise on `LANES` numbers with one coefficient array per
+    /// step (`fwd`, `bwd`: one pointer each, no index arithmetic), which
+    /// the compiler packs into `mulpd`/`subpd` (two lanes per SSE2
+    /// register) and the core overlaps (independent recurrences).
+    pub(super) fn solve_into(&self, r: &mut [f64], t: &mut [[f64; LANES]], x: &mut [f64]) {
+        if self.lane == 0 {
+            x.copy_from_slice(r);
+            self.solve(x);
+            return;
+        }
+        let (n, s) = (r.len(), self.lane);
+        let whole = LANES * s;
+        let (t, fwd, bwd) = (&mut t[..s], &self.fwd[..s], &self.bwd[..s]);
+        let (l1, l2, inv_d) = (&self.l1, &self.l2, &self.inv_d);
+        // forward, the blocks side by side
+        let mut y1 = [0.0; LANES];
+        let mut y2 = [0.0; LANES];
+        {
+            let rs = lanes(r, s);
+            for (i, (t, [a, b])) in t.iter_mut().zip(fwd).enumerate() {
+                let y: [f64; LANES] =
+                    std::array::from_fn(|k| (rs[k][i] - b[k] * y2[k]) - a[k] * y1[k]);
+                *t = y;
+                y2 = y1;
+                y1 = y;
+            }
+        }
+        // the last block's rest, in place in `r`
+        let (mut a, mut b) = (y1[LANES - 1], y2[LANES - 1]);
+        for i in whole..n {
+            let y = (r[i] - l2[i] * b) - l1[i] * a;
+            r[i] = y;
+            b = a;
+            a = y;
+        }
+        // forward tails, block after block
+        let mut p = [y1[0], y2[0]];
+        for (k, tail) in (1..LANES).zip(&self.down) {
+            let (start, end) = self.block(k);
+            let ends = {
+                let mut at = |j: usize| *slot(t, r, s, j);
+                tail.carry([at(end - 1), at(end - 2)], p)
+            };
+            for (i, (h1, h2)) in tail.near[0].iter().zip(&tail.near[1]).enumerate() {
+                *slot(t, r, s, start + i) += p[0] * h1 + p[1] * h2;
+            }
+            *slot(t, r, s, end - 1) = ends[0];
+            *slot(t, r, s, end - 2) = ends[1];
+            p = ends;
+        }
+        // backward: the last block's rest from the top, then the blocks
+        let (mut a, mut b) = (0.0, 0.0);
+        for j in (whole..n).rev() {
+            let z = (r[j] * inv_d[j] - l2[j + 2] * b) - l1[j + 1] * a;
+            x[j] = z;
+            b = a;
+            a = z;
+        }
+        let mut z1 = [0.0; LANES];
+        let mut z2 = [0.0; LANES];
+        z1[LANES - 1] = a;
+        z2[LANES - 1] = b;
+        {
+            let mut xs = lanes_mut(x, s);
+            for (i, (y, [d, u1, u2])) in t.iter().zip(bwd).enumerate().rev() {
+                let z: [f64; LANES] =
+                    std::array::from_fn(|k| (y[k] * d[k] - u2[k] * z2[k]) - u1[k] * z1[k]);
+                for (x, z) in xs.iter_mut().zip(z) {
+                    x[i] = z;
+                }
+                z2 = z1;
+                z1 = z;
+            }
+        }
+        // backward tails, block after block, from the top
+        let top = (LANES - 1) * s;
+        let mut q = [x[top], x[top + 1]];
+        for (k, tail) in (0..LANES - 1).zip(&self.up).rev() {
+            let (start, end) = self.block(k);
+            let ends = tail.carry([x[start], x[start + 1]], q);
+            let near = tail.near[0].len();
+            tail.fix(&mut x[end - near..end], q);
+            [x[start], x[start + 1]] = ends;
+            q = ends;
+        }
+    }
+
+    /// `(A^-1 M v)_0`, the first stage's velocity of mass 0: a dot product
+    /// over the masses where `M A^-1 e_0` is not negligible, four partial
+    /// sums so that it pipelines (and packs into two `mulpd`/`addpd`).
+    pub(super) fn first_stage_0(&self, v: &[f64]) -> f64 {
+        let w = &self.first_stage_0;
+        let v = &v[..w.len()];
+        let mut sums = [0.0; 4];
+        let (wc, vc) = (w.chunks_exact(4), v.chunks_exact(4));
+        let (wr, vr) = (wc.remainder(), vc.remainder());
+        for (w, v) in wc.zip(vc) {
+            for k in 0..4 {
+                sums[k] += w[k] * v[k];
+            }
+        }
+        let rest: f64 = wr.iter().zip(vr).map(|(w, v)| w * v).sum();
+        (sums[0] + sums[1]) + (sums[2] + sums[3]) + rest
+    }
+}
+
+/// The first `LANES` blocks of `s` masses of `x`.
+fn lanes(x: &[f64], s: usize) -> [&[f64]; LANES] {
+    std::array::from_fn(|k| &x[k * s..(k + 1) * s])
+}
+
+/// The first `LANES` blocks of `s` masses of `x`, mutable.
+fn lanes_mut(x: &mut [f64], s: usize) -> [&mut [f64]; LANES] {
+    let mut blocks = x.chunks_exact_mut(s);
+    std::array::from_fn(|_| blocks.next().unwrap_or_default())
+}
+
+/// Mass `j`'s value in the forward sweep's storage: `t` for the blocks'
+/// first `LANES * s` masses (block `j / s`, step `j % s`), `r` after.
+fn slot<'a>(
+    t: &'a mut [[f64; LANES]],
+    r: &'a mut [f64],
+    s: usize,
+    j: usize,
+) -> &'a mut f64 {
+    if j < LANES * s {
+        &mut t[j % s][j / s]
+    } else {
+        &mut r[j]
+    }
+}
