@@ -443,12 +443,7 @@ fn lanes_mut(x: &mut [f64], s: usize) -> [&mut [f64]; LANES] {
 
 /// Mass `j`'s value in the forward sweep's storage: `t` for the blocks'
 /// first `LANES * s` masses (block `j / s`, step `j % s`), `r` after.
-fn slot<'a>(
-    t: &'a mut [[f64; LANES]],
-    r: &'a mut [f64],
-    s: usize,
-    j: usize,
-) -> &'a mut f64 {
+fn slot<'a>(t: &'a mut [[f64; LANES]], r: &'a mut [f64], s: usize, j: usize) -> &'a mut f64 {
     if j < LANES * s {
         &mut t[j % s][j / s]
     } else {
