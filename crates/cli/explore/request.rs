@@ -95,6 +95,13 @@ pub fn words(query: RawQuery, keys: &[&str], switches: &[&str]) -> Result<Vec<St
                 }
             }
         } else if keys.contains(&flag.as_str()) {
+            // a value is never read as a flag (`alpha=--wall-trace` would
+            // smuggle a file into the command): a leading `-` only on a number
+            if value.starts_with('-') && value.parse::<f64>().is_err() {
+                return Err(ApiError::bad(format!(
+                    "{key} takes a value, not a flag (got '{value}')"
+                )));
+            }
             words.push(format!("--{flag}"));
             words.push(value);
         } else {

@@ -134,6 +134,14 @@ async fn bad_input_is_400_with_the_command_lines_message() {
         ),
         ("/api/run?scene=/etc/passwd", "unknown parameter 'scene'"),
         (
+            "/api/run?x=0.4&alpha=--wall-trace&engine=/tmp/f.csv",
+            "alpha takes a value, not a flag (got '--wall-trace')",
+        ),
+        (
+            "/api/run?x=-h&alpha=0.05",
+            "x takes a value, not a flag (got '-h')",
+        ),
+        (
             "/api/diagram?x=0.4&alpha=0.05&out=x.svg",
             "unknown parameter 'out'",
         ),
