@@ -168,6 +168,11 @@ impl Dashpots {
         }
     }
 
+    /// The segments' masses: the only velocities a dashpot step changes.
+    pub(crate) fn segments(&self) -> impl Iterator<Item = std::ops::Range<usize>> + '_ {
+        (self.segments.iter()).map(|(start, s)| *start..*start + s.c.len())
+    }
+
     /// One SDIRK2 step on `v` with the wall dashpot's constant `wall` (`c_0`,
     /// 0, or a fraction of `c_0` for a step in which the contact begins or
     /// ends); returns the wall dashpot's impulse on mass 0 (upward positive).
