@@ -161,14 +161,22 @@ impl ChainEngine {
 
     /// Displacements and velocities of the masses (Beeman's; an elastic
     /// chain rebuilds the velocities from its positions).
-    pub fn state(&self) -> (&[f64], Cow<'_, [f64]>) {
+    pub fn state(&self) -> (Cow<'_, [f64]>, Cow<'_, [f64]>) {
         (self.displacement(), self.velocities())
     }
 
-    fn displacement(&self) -> &[f64] {
+    fn displacement(&self) -> Cow<'_, [f64]> {
         match &self.kernel {
-            Kernel::Elastic(k) => k.displacement(),
+            Kernel::Elastic(k) => Cow::Borrowed(k.displacement()),
             Kernel::Viscous(k) => k.displacement(),
+        }
+    }
+
+    /// Displacement of mass 0 (the wall's) now.
+    fn u0(&self) -> f64 {
+        match &self.kernel {
+            Kernel::Elastic(k) => k.displacement()[0],
+            Kernel::Viscous(k) => k.u0(),
         }
     }
 
@@ -238,7 +246,7 @@ impl ChainEngine {
         self.layout
             .mass
             .iter()
-            .zip(self.displacement())
+            .zip(self.displacement().iter())
             .map(|(m, u)| m * u)
             .sum::<f64>()
             / self.total_mass
@@ -249,7 +257,7 @@ impl ChainEngine {
     /// [`Self::run`] would). Stepping on after a stop is allowed.
     pub fn step(&mut self) -> Result<Option<StopReason>, ChainError> {
         let dt = self.dt;
-        let u0_old = self.displacement()[0];
+        let u0_old = self.u0();
         let (force, wall_impulse) = match &mut self.kernel {
             Kernel::Elastic(kernel) => {
                 kernel.step();
@@ -268,7 +276,7 @@ impl ChainEngine {
         self.steps += 1;
         self.track_contact(u0_old);
         self.record();
-        if self.steps.is_multiple_of(1024) && !self.displacement()[0].is_finite() {
+        if self.steps.is_multiple_of(1024) && !self.u0().is_finite() {
             let mass = self
                 .displacement()
                 .iter()
@@ -301,7 +309,7 @@ impl ChainEngine {
     /// Detects wall-spring crossings of zero, timed by linear interpolation
     /// within the step.
     fn track_contact(&mut self, u0_old: f64) {
-        let u0 = self.displacement()[0];
+        let u0 = self.u0();
         let was = self.history.in_contact();
         let now = u0 < 0.0;
         if was == now {
@@ -342,7 +350,7 @@ impl ChainEngine {
         if let Some(every) = rec.wall_every
             && self.steps.is_multiple_of(every.max(1))
         {
-            let u0 = self.displacement()[0];
+            let u0 = self.u0();
             let velocity = self.velocity(0);
             self.recording.wall.push(WallSample {
                 time: self.t,

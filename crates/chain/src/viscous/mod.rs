@@ -11,46 +11,62 @@
 //! (`crate::verlet`), and only the segments keep Beeman's state
 //! (`u, v, a, a_prev`) for the dashpot solve.
 //!
-//! Both rules read positions only across the border, and both write the
-//! new positions into a second array (swapped with `u` after the step), so
-//! the order within a step is free but for one thing: Beeman's new
+//! A long segment (`LANES * 64` masses or more, where the dashpot solve
+//! runs in blocks) keeps its state in the blocks' lanes and takes its whole
+//! step in two passes ([`blocked`]); a short one keeps it in the chain's
+//! arrays, with a Beeman pass for the positions, one for the velocities and
+//! the dashpot step of [`Dashpots`].
+//!
+//! All rules read positions only across a border, and all write the new
+//! positions into a second array (swapped with `u` after the step), so the
+//! order within a step is free but for one thing: Beeman's new
 //! accelerations need every neighbour's new position, so the segments'
-//! velocities come after the sweep. After the swap the second array holds
-//! the last step's positions of every mass, from which a swept mass's
-//! Beeman velocity is rebuilt when asked (`v(n) = d(n) / dt + dt (2 a(n) +
-//! a(n-1)) / 6`, as the elastic kernel does).
+//! velocities come after the sweep (a long segment's positions are ready
+//! before the step: it computes them a step ahead, and publishes its end
+//! masses', the only ones its neighbours read). After the swap the second
+//! array holds the last step's positions of every mass (but a long
+//! segment's inner ones), from which a swept mass's Beeman velocity is
+//! rebuilt when asked (`v(n) = d(n) / dt + dt (2 a(n) + a(n-1)) / 6`, as
+//! the elastic kernel does).
 
-use crate::damping::Dashpots;
+mod blocked;
+
+use crate::damping::{Dashpots, lane_length, segments};
 use crate::layout::ChainLayout;
 use crate::verlet::{Edge, Run, Sweep, edge_dt2_acceleration, restrict, spring_runs};
+use blocked::Blocked;
 use impact_model::WallContact;
+use std::borrow::Cow;
 use std::ops::Range;
 
 /// Positions of a viscous chain, Beeman's state on its dashpot segments and
 /// the last step's motion elsewhere.
 #[derive(Debug, Clone)]
 pub(crate) struct ViscousChain {
-    /// `u(n)`.
+    /// `u(n)` (a long segment's inner masses: in the segment).
     now: Vec<f64>,
     /// `u(n+1)` while a step computes it, `u(n-1)` between steps.
     next: Vec<f64>,
     /// `d(n) = u(n) - u(n-1)` of the swept masses.
     motion: Vec<f64>,
     /// Beeman's velocities and accelerations now and one step ago (only the
-    /// segments' masses are kept up to date).
+    /// short segments' masses are kept up to date).
     v: Vec<f64>,
     a: Vec<f64>,
     a_prev: Vec<f64>,
     /// The swept masses' runs and edges, `dt^2 k / m`.
     swept: (Vec<Run>, Vec<Edge>),
-    /// The segments' runs and edges, `k / m`.
+    /// The short segments' runs and edges, `k / m`.
     beeman: (Vec<Run>, Vec<Edge>),
-    segments: Vec<Range<usize>>,
+    short: Vec<Range<usize>>,
+    /// The short segments' dashpots.
+    dashpots: Dashpots,
+    long: Vec<Blocked>,
     /// `k_0 / m_0`: the wall spring, acting while `u_0 < 0`.
     wall_spring: f64,
-    /// `k_0`.
+    /// `k_0` and `c_0`.
     wall_stiffness: f64,
-    dashpots: Dashpots,
+    wall_damping: f64,
     dt: f64,
 }
 
@@ -59,17 +75,29 @@ impl ViscousChain {
     /// no force yet (Beeman's start: `a = a_prev = 0`).
     pub(crate) fn new(layout: &ChainLayout, dt: f64, impact_speed: f64) -> Self {
         let n = layout.len();
-        let dashpots = Dashpots::new(&layout.mass, &layout.viscosity, dt);
-        let segments: Vec<Range<usize>> = dashpots.segments().collect();
-        let mut in_segment = vec![false; n];
-        for r in &segments {
-            in_segment[r.clone()].iter_mut().for_each(|s| *s = true);
+        let (mass, k, c) = (&layout.mass, &layout.stiffness, &layout.viscosity);
+        let (long, short): (Vec<_>, Vec<_>) = segments(c)
+            .into_iter()
+            .partition(|r| lane_length(r.len()) > 0);
+        // 0: swept, 1: short segment, 2: long segment
+        let mut rule = vec![0u8; n];
+        for (r, mark) in short
+            .iter()
+            .map(|r| (r, 1))
+            .chain(long.iter().map(|r| (r, 2)))
+        {
+            rule[r.clone()].iter_mut().for_each(|s| *s = mark);
         }
         let (runs, edges) = spring_runs(layout, 1.0);
-        let beeman = restrict(&runs, &edges, |j| in_segment[j]);
+        let beeman = restrict(&runs, &edges, |j| rule[j] == 1);
         let (runs, edges) = spring_runs(layout, dt * dt);
-        let swept = restrict(&runs, &edges, |j| !in_segment[j]);
+        let swept = restrict(&runs, &edges, |j| rule[j] == 0);
         Self {
+            dashpots: Dashpots::on(mass, c, dt, &short),
+            long: long
+                .iter()
+                .map(|r| Blocked::new((mass, k, c), r.start, r.len(), dt, impact_speed))
+                .collect(),
             now: vec![0.0; n],
             // u(-1) = u(0) - d(0): no spring strained, so a(-1) = 0
             next: vec![dt * impact_speed; n],
@@ -79,17 +107,31 @@ impl ViscousChain {
             a_prev: vec![0.0; n],
             swept,
             beeman,
-            segments,
-            wall_spring: layout.stiffness[0] / layout.mass[0],
-            wall_stiffness: layout.stiffness[0],
-            dashpots,
+            short,
+            wall_spring: k[0] / mass[0],
+            wall_stiffness: k[0],
+            wall_damping: c[0],
             dt,
         }
     }
 
+    /// Displacement of mass 0 now.
+    pub(crate) fn u0(&self) -> f64 {
+        self.now[0]
+    }
+
     /// Displacements now.
-    pub(crate) fn displacement(&self) -> &[f64] {
-        &self.now
+    pub(crate) fn displacement(&self) -> Cow<'_, [f64]> {
+        if self.long.is_empty() {
+            return Cow::Borrowed(&self.now);
+        }
+        let mut u = self.now.clone();
+        for b in &self.long {
+            for (q, u) in u[b.masses()].iter_mut().enumerate() {
+                *u = b.position(q);
+            }
+        }
+        Cow::Owned(u)
     }
 
     /// The sweep over the masses no dashpot touches.
@@ -108,7 +150,10 @@ impl ViscousChain {
     pub(crate) fn step(&mut self, mass: &[f64], old_force: f64, law: WallContact) -> (f64, f64) {
         let dt = self.dt;
         let u0_old = self.now[0];
-        for r in &self.segments {
+        for b in &self.long {
+            b.publish(&mut self.next);
+        }
+        for r in &self.short {
             let r = r.clone();
             let (v, a, ap) = (
                 &self.v[r.clone()],
@@ -134,13 +179,17 @@ impl ViscousChain {
         let u0 = self.next[0];
         let force = -self.wall_stiffness * u0.min(0.0);
         let spring_impulse = 0.5 * dt * (old_force + force);
-        let wall_impulse = self.dashpots.step(
-            mass,
-            &mut self.v,
-            compressed_fraction(u0_old, u0),
-            spring_impulse,
-            law,
-        );
+        let compressed = compressed_fraction(u0_old, u0);
+        let mut wall_impulse =
+            (self.dashpots).step(mass, &mut self.v, compressed, spring_impulse, law);
+        for b in &mut self.long {
+            let wall = if b.masses().start == 0 {
+                compressed * self.wall_damping
+            } else {
+                0.0
+            };
+            wall_impulse += b.step(&self.next, wall, spring_impulse, law);
+        }
         std::mem::swap(&mut self.now, &mut self.next);
         (force, wall_impulse)
     }
@@ -148,7 +197,10 @@ impl ViscousChain {
     /// Beeman's velocity of mass `j` now: kept on the segments, rebuilt
     /// from the positions elsewhere.
     pub(crate) fn velocity(&self, j: usize) -> f64 {
-        if self.segments.iter().any(|r| r.contains(&j)) {
+        if let Some(b) = self.long.iter().find(|b| b.masses().contains(&j)) {
+            return b.velocity(j - b.masses().start);
+        }
+        if self.short.iter().any(|r| r.contains(&j)) {
             return self.v[j];
         }
         let sweep = self.sweep();
@@ -167,6 +219,11 @@ impl ViscousChain {
             .chain(edges.iter().map(|e| e.mass));
         for j in masses {
             v[j] = self.velocity(j);
+        }
+        for b in &self.long {
+            for (q, v) in v[b.masses()].iter_mut().enumerate() {
+                *v = b.velocity(q);
+            }
         }
         v
     }
