@@ -143,9 +143,14 @@ pub(crate) struct Factor {
     /// Step `i` of the forward sweep in the blocks: `[l1, l2]` of masses
     /// `k lane + i`, `k < LANES`.
     fwd: Vec<[Quad; 2]>,
-    /// Step `i` of the backward sweep: `[1 / d, l1[j + 1], l2[j + 2]]` of
-    /// masses `j = k lane + i`.
-    bwd: Vec<[Quad; 3]>,
+    /// Step `i` of the backward sweep: `1 / d` of masses `k lane + i`. Its
+    /// other coefficients, `l1[j + 1]` and `l2[j + 2]`, are the forward
+    /// sweep's at steps `i + 1` and `i + 2`: at a block's last two steps
+    /// they are the next block's, but there they multiply the zeros the
+    /// block's sweep starts from (the last block's top is a chain's top,
+    /// or its last masses are swept apart, see `solve_into`), so none are
+    /// stored twice.
+    bwd: Vec<Quad>,
     /// Forward sweep: blocks `1..LANES`, from their bottoms up.
     down: Vec<Tail>,
     /// Backward sweep: blocks `0..LANES - 1`, from their tops down.
@@ -256,9 +261,7 @@ impl Factor {
             f.fwd = (0..lane)
                 .map(|i| [at(&f.l1, 0, i), at(&f.l2, 0, i)])
                 .collect();
-            f.bwd = (0..lane)
-                .map(|i| [at(&f.inv_d, 0, i), at(&f.l1, 1, i), at(&f.l2, 2, i)])
-                .collect();
+            f.bwd = (0..lane).map(|i| at(&f.inv_d, 0, i)).collect();
             f.down = (1..LANES).map(|k| f.down_tail(k)).collect();
             f.up = (0..LANES - 1).map(|k| f.up_tail(k)).collect();
             f.lane_tails = LaneTails::new(&f.down, &f.up);
@@ -443,8 +446,16 @@ impl Factor {
         z2[LANES - 1] = b;
         {
             let mut xs = lanes_mut(x, s);
-            for (i, (y, [d, u1, u2])) in t.iter().zip(bwd).enumerate().rev() {
-                let (y, d, u1, u2) = (y.0, d.0, u1.0, u2.0);
+            for (i, (y, d)) in t.iter().zip(bwd).enumerate().rev() {
+                // the last block's top steps take the rest's coefficients
+                let upper = |q: usize| -> [f64; LANES] {
+                    if i + q < s {
+                        fwd[i + q][q - 1].0
+                    } else {
+                        std::array::from_fn(|k| [l1, l2][q - 1][k * s + i + q])
+                    }
+                };
+                let (y, d, u1, u2) = (y.0, d.0, upper(1), upper(2));
                 let z: [f64; LANES] =
                     std::array::from_fn(|k| (y[k] * d[k] - u2[k] * z2[k]) - u1[k] * z1[k]);
                 for (x, z) in xs.iter_mut().zip(z) {
@@ -473,9 +484,10 @@ impl Factor {
         &self.fwd
     }
 
-    /// The backward sweep's steps in the blocks' lanes: `[1 / d, l1[j +
-    /// 1], l2[j + 2]]` of the masses `j = k lane + i` at step `i`.
-    pub(crate) fn backward_steps(&self) -> &[[Quad; 3]] {
+    /// The backward sweep's steps in the blocks' lanes: `1 / d` of the
+    /// masses `k lane + i` at step `i` (its `l1[j + 1]`, `l2[j + 2]` are
+    /// the forward steps' `i + 1` and `i + 2`, zero past a block's top).
+    pub(crate) fn backward_steps(&self) -> &[Quad] {
         &self.bwd
     }
 

@@ -57,7 +57,8 @@ struct Coef {
 ///
 /// - `u[P]` is `u(n+1)` (computed a step ahead), `u[1 - P]` gets `u(n+2)`;
 /// - `x[P]` is `dt v(n)` after the dashpots, then Beeman's `dt v(n+1)`
-///   before them; `x[1 - P]` gets the dashpots' `dt v(n+1)`;
+///   before them; `x[1 - P]` gets the forward sweep's `L^-1 r`, then the
+///   dashpots' `dt v(n+1)` in its place;
 /// - with `b = dt^2 a / 6`: `acc[P]` is `5 b(n) - b(n-1)` until the
 ///   forward pass puts `b(n+1)` in its place, `acc[1 - P]` is `b(n)` until
 ///   the backward pass puts `5 b(n+1) - b(n)` in its place.
@@ -69,14 +70,13 @@ struct Coef {
 /// One array of these, not seven arrays: a pass then walks one stream of
 /// state (and one of the factor's), and the roles swap by the parity
 /// instead of by swapping arrays; a pointer per array cost an instruction
-/// per array per step.
+/// per array per step. Nothing else is stored per step: the whole state of
+/// a segment at `N = 10^4` fits in the core's 1 MiB L2 with the factor's.
 #[derive(Debug, Clone, Copy, Default)]
 struct Step {
     u: [Quad; 2],
     x: [Quad; 2],
     acc: [Quad; 2],
-    /// The forward sweep's `L^-1 r`.
-    t: Quad,
 }
 
 /// Beeman's new acceleration of a step's masses from positions below, at
@@ -148,7 +148,7 @@ fn forward<const P: usize>(
             let lo = if e == 0 { x(s - 1).up(0.0) } else { x(e - 1) };
             let hi = if e + 1 == s { x(0).down(0.0) } else { x(e + 1) };
             let y = sweep(&coef[e], fwd[e], [lo, x(e), hi], y1, y2);
-            steps[e].t = y;
+            steps[e].x[1 - P] = y;
             (y2, y1) = (y1, y);
         }
         return;
@@ -162,7 +162,7 @@ fn forward<const P: usize>(
     let xb_last = beeman::<P>(&coef[s - 1], last, &mut steps[s - 1]);
     let next = beeman::<P>(&coef[1], [u[0], u[1], u[2]], &mut steps[1]);
     let y = sweep(&coef[0], fwd[0], [xb_last.up(0.0), xb_first, next], y1, y2);
-    steps[0].t = y;
+    steps[0].x[1 - P] = y;
     (y2, y1) = (y1, y);
     // step e's sweep beside step e + 1's velocities, e in 1..s - 2, two
     // steps a loop trip (the loop's counting and the recurrence's register
@@ -182,7 +182,7 @@ fn forward<const P: usize>(
     for (e, next) in [(s - 2, xb_last), (s - 1, xb_first.down(0.0))] {
         let x = [steps[e - 1].x[P], steps[e].x[P], next];
         let y = sweep(&coef[e], fwd[e], x, y1, y2);
-        steps[e].t = y;
+        steps[e].x[1 - P] = y;
         (y2, y1) = (y1, y);
     }
 }
@@ -203,7 +203,7 @@ fn forward_step<const P: usize>(
     let next = beeman::<P>(&coef[e + 1], stencil, &mut steps[e + 1]);
     let x = [steps[e - 1].x[P], steps[e].x[P], next];
     let y = sweep(&coef[e], fwd[e], x, y1, y2);
-    steps[e].t = y;
+    steps[e].x[1 - P] = y;
     [y, y1]
 }
 
@@ -213,9 +213,10 @@ fn forward_step<const P: usize>(
 /// `5 b - b_prev` in place already.
 fn backward<const P: usize, const AGAIN: bool>(steps: &mut [Step], factor: &Factor) {
     let s = steps.len();
-    let bwd = &factor.backward_steps()[..s];
-    let backward_step = |step: &mut Step, &[d, l1, l2]: &[Quad; 3], [z1, z2]: [Quad; 2]| {
-        let z = (step.t * d - l2 * z2) - l1 * z1;
+    let (fwd, bwd) = (&factor.forward_steps()[..s], &factor.backward_steps()[..s]);
+    // the forward sweep's `l1` one step up and `l2` two steps up
+    let backward_step = |step: &mut Step, d: Quad, l1: Quad, l2: Quad, [z1, z2]: [Quad; 2]| {
+        let z = (step.x[1 - P] * d - l2 * z2) - l1 * z1;
         step.x[1 - P] = z;
         if AGAIN {
             position_again::<P>(step);
@@ -224,16 +225,22 @@ fn backward<const P: usize, const AGAIN: bool>(steps: &mut [Step], factor: &Fact
         }
         [z, z1]
     };
-    // two steps a loop trip, as forward
+    // the top two steps (nothing above them in their blocks), then two
+    // steps a loop trip, as forward
     let mut z = [Quad::ZERO; 2];
+    z = backward_step(&mut steps[s - 1], bwd[s - 1], Quad::ZERO, Quad::ZERO, z);
+    z = backward_step(&mut steps[s - 2], bwd[s - 2], fwd[s - 1][0], Quad::ZERO, z);
     let odd = s % 2;
-    let (pairs, bwd_pairs) = (steps[odd..].chunks_exact_mut(2), bwd[odd..].chunks_exact(2));
-    for (pair, b) in pairs.zip(bwd_pairs).rev() {
-        z = backward_step(&mut pair[1], &b[1], z);
-        z = backward_step(&mut pair[0], &b[0], z);
+    let pairs = (steps[odd..s - 2].chunks_exact_mut(2))
+        .zip(bwd[odd..s - 2].chunks_exact(2))
+        .zip(fwd[odd + 1..s - 1].chunks_exact(2))
+        .zip(fwd[odd + 2..].chunks_exact(2));
+    for (((pair, d), up1), up2) in pairs.rev() {
+        z = backward_step(&mut pair[1], d[1], up1[1][0], up2[1][1], z);
+        z = backward_step(&mut pair[0], d[0], up1[0][0], up2[0][1], z);
     }
     if odd == 1 {
-        backward_step(&mut steps[0], &bwd[0], z);
+        backward_step(&mut steps[0], bwd[0], fwd[1][0], fwd[2][1], z);
     }
     // the blocks' fix-ups, and the positions where they changed `x`
     let near = factor.fix_backward(steps, |step| &mut step.x[1 - P]);
@@ -418,7 +425,7 @@ impl Blocked {
         };
         let steps = &mut self.steps;
         forward::<P>(steps, &self.coef, factor, below, true);
-        factor.fix_forward(steps, |step| &mut step.t);
+        factor.fix_forward(steps, |step| &mut step.x[1 - P]);
         let first_stage = if wall > 0.0 {
             Self::first_stage_0::<P>(factor, steps)
         } else {
@@ -435,7 +442,7 @@ impl Blocked {
         self.coef[0].damp_below.0[0] = 0.0;
         steps[0].x[P].0[0] -= self.dt * spring_impulse / self.mass[0];
         forward::<P>(steps, &self.coef, &self.free, below, false);
-        self.free.fix_forward(steps, |step| &mut step.t);
+        self.free.fix_forward(steps, |step| &mut step.x[1 - P]);
         backward::<P, true>(steps, &self.free);
         -spring_impulse
     }
