@@ -5,6 +5,7 @@
 
 use super::GAMMA;
 use super::quad::{LANES, Quad};
+use super::tails::{LaneTails, Tail};
 
 /// A chain shorter than `LANES * MIN_LANE` masses sweeps in one piece: its
 /// fix-ups would cost about what the blocks save.
@@ -18,107 +19,6 @@ const NEGLIGIBLE: f64 = 1e-20;
 /// Homogeneous solutions below this are flushed to zero: they only decay
 /// further, and subnormal numbers are slow.
 const FLUSH: f64 = 1e-200;
-
-/// How the homogeneous solutions of a sweep's recurrence carry the two
-/// values just outside a block into it.
-///
-/// A block's sweep is started from zero; by linearity the true values in
-/// it are the local ones plus `p1 h1 + p2 h2`, where `p1`, `p2` are the
-/// true values at the two masses just outside the block (on the side the
-/// sweep comes from) and `h1`, `h2` the recurrence's solutions with no
-/// right-hand side started from `(1, 0)` and `(0, 1)` there. They depend on
-/// the factorisation only, and decay geometrically into the block (`P` is
-/// diagonally dominant; inside an elastic layer `L` is the identity and
-/// they vanish at once), so they are stored only while they matter, plus
-/// their exact values at the block's far edge, which carry the true values
-/// on to the next block.
-#[derive(Debug, Clone, Default)]
-struct Tail {
-    /// `h1`, `h2` at the block's masses nearest the edge they start from,
-    /// in mass order (both of one length).
-    near: [Vec<f64>; 2],
-    /// `h1`, `h2` at the block's two masses farthest from that edge, in the
-    /// order the sweep carries them (nearest the next block first).
-    far: [[f64; 2]; 2],
-}
-
-impl Tail {
-    /// The true values at the block's far edge from the local ones `ends`
-    /// and the true values `p` outside its near edge.
-    fn carry(&self, ends: [f64; 2], p: [f64; 2]) -> [f64; 2] {
-        let [h1, h2] = self.far;
-        [
-            ends[0] + (p[0] * h1[0] + p[1] * h2[0]),
-            ends[1] + (p[0] * h1[1] + p[1] * h2[1]),
-        ]
-    }
-
-    /// Adds `p1 h1 + p2 h2` to `x` (the block's masses nearest the edge,
-    /// in mass order): three equal-length slices, no index arithmetic, so
-    /// the loop compiles to packed `mulpd`/`addpd`.
-    fn fix(&self, x: &mut [f64], p: [f64; 2]) {
-        let [h1, h2] = &self.near;
-        for ((x, a), b) in x.iter_mut().zip(h1).zip(h2) {
-            *x += p[0] * a + p[1] * b;
-        }
-    }
-}
-
-/// A sweep's tails with their near parts side by side, block `k` in lane
-/// `k` (zero where a block has no tail or its tail has ended): one pass
-/// fixes every block up.
-#[derive(Debug, Clone, Default)]
-struct LaneTail {
-    near: [Vec<Quad>; 2],
-}
-
-impl LaneTail {
-    /// The tails `tails[k]` of the blocks `first + k`, their near parts
-    /// starting at the blocks' first steps (`top`: ending at their last).
-    fn new(tails: &[Tail], first: usize, top: bool) -> Self {
-        let longest = tails.iter().map(|t| t.near[0].len()).max().unwrap_or(0);
-        let mut near = [vec![Quad::ZERO; longest], vec![Quad::ZERO; longest]];
-        for (k, tail) in tails.iter().enumerate() {
-            let len = tail.near[0].len();
-            let from = if top { longest - len } else { 0 };
-            for (lanes, h) in near.iter_mut().zip(&tail.near) {
-                for (q, h) in lanes[from..].iter_mut().zip(h) {
-                    q.0[first + k] = *h;
-                }
-            }
-        }
-        Self { near }
-    }
-
-    /// Adds `p_k1 h1 + p_k2 h2` to the steps `x` (as many as the near
-    /// parts are long), `p[k]` the true values outside block `k`.
-    fn fix<'a>(&self, x: impl Iterator<Item = &'a mut Quad>, p: [[f64; 2]; LANES]) {
-        let p1 = Quad(std::array::from_fn(|k| p[k][0]));
-        let p2 = Quad(std::array::from_fn(|k| p[k][1]));
-        let [h1, h2] = &self.near;
-        for ((x, &h1), &h2) in x.zip(h1).zip(h2) {
-            *x = *x + (p1 * h1 + p2 * h2);
-        }
-    }
-}
-
-/// Both sweeps' [`LaneTail`]s.
-#[derive(Debug, Clone, Default)]
-struct LaneTails {
-    /// The forward sweep's, blocks `1..LANES`.
-    down: LaneTail,
-    /// The backward sweep's, blocks `0..LANES - 1`, ending at their tops.
-    up: LaneTail,
-}
-
-impl LaneTails {
-    fn new(down: &[Tail], up: &[Tail]) -> Self {
-        Self {
-            down: LaneTail::new(down, 1, false),
-            up: LaneTail::new(up, 0, true),
-        }
-    }
-}
 
 /// `L D L^T` factors of `P = A M^-1 A`, `A = M - g h D` for one wall
 /// dashpot constant, stored for streaming sweeps.
@@ -378,13 +278,16 @@ impl Factor {
     /// Solves `P x = r`, `t` (`lane` long) the sweeps' scratch; `r` is
     /// overwritten.
     ///
-    /// The blocks' recurrences run in the lanes of `[f64; LANES]` arrays:
-    /// the forward sweep gathers `r` from the blocks into `t`, the backward
-    /// sweep scatters its result into `x`, and in between every operation
-    /// is elementwise on `LANES` numbers with one coefficient array per
-    /// step (`fwd`, `bwd`: one pointer each, no index arithmetic), which
-    /// the compiler packs into `mulpd`/`subpd` (two lanes per SSE2
-    /// register) and the core overlaps (independent recurrences).
+    /// The blocks' recurrences run in the lanes of [`Quad`]s: the forward
+    /// sweep gathers `r` from the blocks into `t`, the backward sweep
+    /// scatters its result into `x`, and in between every operation is
+    /// elementwise on `LANES` numbers with the steps' coefficients (`fwd`,
+    /// `bwd`), which the compiler packs into `mulpd`/`subpd` (two lanes per
+    /// SSE2 register) and the core overlaps (independent recurrences). The
+    /// chain's long segments do not come here: the viscous kernel runs
+    /// these sweeps in its own passes, its state in the lanes
+    /// (`crate::viscous::blocked`); this is their reference in the chain's
+    /// arrays, for any segment and any block length.
     pub(super) fn solve_into(&self, r: &mut [f64], t: &mut [Quad], x: &mut [f64]) {
         if self.lane == 0 {
             x.copy_from_slice(r);
@@ -507,7 +410,7 @@ impl Factor {
             ends[k] = tail.carry([last[k], before[k]], carried);
             carried = ends[k];
         }
-        self.lane_tails.down.fix(steps.iter_mut().map(&t), p);
+        self.lane_tails.down.fix(steps, &t, p, |_| {});
         for (k, [last, before]) in ends.into_iter().enumerate().skip(1) {
             t(&mut steps[s - 1]).0[k] = last;
             t(&mut steps[s - 2]).0[k] = before;
@@ -517,14 +420,16 @@ impl Factor {
     /// The backward sweep's fix-ups when every mass is in a lane: `x[i]`
     /// holds the blocks' local sweeps at step `i`, each started from zero
     /// at its top (the last block's from the true values above it), and
-    /// leaves with the true `x = P^-1 r`. Returns how many steps at the top
-    /// changed (the steps 0 and 1 change too), so that what was computed
-    /// from `x` there can be computed again.
+    /// leaves with the true `x = P^-1 r`; `then` is called on every step
+    /// whose `x` changed (each block's top steps while its tail lasts, and
+    /// its steps 0 and 1), so that what was computed from `x` there can be
+    /// computed again.
     pub(crate) fn fix_backward<S>(
         &self,
         steps: &mut [S],
         x: impl Fn(&mut S) -> &mut Quad,
-    ) -> usize {
+        mut then: impl FnMut(&mut S),
+    ) {
         let (mut q, mut ends) = ([[0.0; 2]; LANES], [[0.0; 2]; LANES]);
         let (first, second) = (x(&mut steps[0]).0, x(&mut steps[1]).0);
         let mut carried = [first[LANES - 1], second[LANES - 1]];
@@ -537,12 +442,12 @@ impl Factor {
         let s = steps.len();
         self.lane_tails
             .up
-            .fix(steps[s - near..].iter_mut().map(&x), q);
+            .fix(&mut steps[s - near..], &x, q, &mut then);
         for (k, [first, second]) in ends.into_iter().enumerate().take(LANES - 1) {
             x(&mut steps[0]).0[k] = first;
             x(&mut steps[1]).0[k] = second;
         }
-        near
+        steps[..2].iter_mut().for_each(then);
     }
 
     /// `M A^-1 e_0` while not negligible (see [`Factor::first_stage_0`]).

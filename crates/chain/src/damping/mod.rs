@@ -36,12 +36,21 @@
 //! (1 - 2g) h D) v` with `P = A M^-1 A`, symmetric positive definite and
 //! pentadiagonal, factorised once (`L D L^T`) for each wall state. A solve
 //! is then one forward and one backward sweep, as backward Euler's was.
+//!
+//! Who runs it. [`Dashpots`] steps any segment (a run of dashpot-joined
+//! masses) in the chain's arrays, a long one in blocks (`Factor::solve_into`,
+//! tested here against the one-piece sweep). The chain's kernel
+//! (`crate::viscous`) gives it the short segments alone: a long one it
+//! steps itself in the lanes of the factor's blocked sweeps, Beeman's
+//! update fused with them (`crate::viscous::blocked`), with the same
+//! factors, tails and wall law.
 
 use impact_model::WallContact;
 use std::ops::Range;
 
 mod factor;
 mod quad;
+mod tails;
 
 pub(crate) use factor::{Factor, lane_length};
 pub(crate) use quad::{LANES, Quad};

@@ -243,9 +243,7 @@ fn backward<const P: usize, const AGAIN: bool>(steps: &mut [Step], factor: &Fact
         backward_step(&mut steps[0], bwd[0], fwd[1][0], fwd[2][1], z);
     }
     // the blocks' fix-ups, and the positions where they changed `x`
-    let near = factor.fix_backward(steps, |step| &mut step.x[1 - P]);
-    steps[..2].iter_mut().for_each(position_again::<P>);
-    steps[s - near..].iter_mut().for_each(position_again::<P>);
+    factor.fix_backward(steps, |step| &mut step.x[1 - P], position_again::<P>);
 }
 
 /// A long run of dashpot-joined masses, stepped in the lanes of its sweeps.
