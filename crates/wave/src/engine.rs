@@ -285,7 +285,7 @@ impl<R: Real> Tracer<R> {
             // At rest relative to the rod's motion at -v_b: a = v_b/2c, b = -v_b/2c.
             up_base: layers.iter().map(|l| vb / (two * l.wave_speed)).collect(),
             down_base: layers.iter().map(|l| -vb / (two * l.wave_speed)).collect(),
-            queue: EventQueue::new(lanes.len()),
+            queue: EventQueue::new(n),
             lanes,
             from_above,
             contact: ContactState::InContact { strain: R::zero() },
@@ -518,10 +518,8 @@ impl<R: Real> Tracer<R> {
                     });
                 }
                 self.next_id += 1;
-                if was_empty && let Some(head) = lane.head_arrival() {
-                    self.queue
-                        .schedule(EventKey::Lane(index as u32), head, self.now)
-                        .map_err(past)?;
+                if was_empty {
+                    self.reschedule_layer(layer)?;
                 }
             }
             Pushed::Merged {
@@ -532,10 +530,8 @@ impl<R: Real> Tracer<R> {
                 if beyond_simultaneity {
                     self.drops.truncation.merged_fronts += 1;
                 }
-                if moved_head && let Some(arrival) = lane.head_arrival() {
-                    self.queue
-                        .schedule(EventKey::Lane(index as u32), arrival, self.now)
-                        .map_err(past)?;
+                if moved_head {
+                    self.reschedule_layer(layer)?;
                 }
                 if self.record.fronts
                     && let Some(rec) = self.recording.fronts.get_mut(id as usize)
@@ -566,14 +562,38 @@ impl<R: Real> Tracer<R> {
             self.folded_reflections += 1;
             self.down_base[lane.layer] -= front.jump;
         }
-        match lane.head_arrival() {
-            Some(next) => self
-                .queue
-                .schedule(EventKey::Lane(index as u32), next, self.now)
-                .map_err(past)?,
-            None => self.queue.cancel(EventKey::Lane(index as u32)),
-        }
+        let layer = lane.layer;
+        self.reschedule_layer(layer)?;
         Ok(Some((jump, front.id)))
+    }
+
+    /// The lane of `layer` whose head arrives first (the up lane on a tie,
+    /// the order of the lanes' indices), and when.
+    #[inline]
+    fn first_lane(&self, layer: usize) -> Option<(usize, R)> {
+        let up = Lane::<R>::index(layer, Direction::Up);
+        let down = Lane::<R>::index(layer, Direction::Down);
+        match (
+            self.lanes[up].head_arrival(),
+            self.lanes[down].head_arrival(),
+        ) {
+            (Some(u), Some(d)) if d < u => Some((down, d)),
+            (Some(u), _) => Some((up, u)),
+            (None, d) => d.map(|d| (down, d)),
+        }
+    }
+
+    /// Puts `layer`'s first arrival in the queue (or takes the layer out).
+    #[inline]
+    pub(crate) fn reschedule_layer(&mut self, layer: usize) -> Result<(), WaveError> {
+        let key = EventKey::Layer(layer as u32);
+        match self.first_lane(layer) {
+            Some((_, t)) => self.queue.schedule(key, t, self.now).map_err(past),
+            None => {
+                self.queue.cancel(key);
+                Ok(())
+            }
+        }
     }
 
     /// Processes the next event. Arrivals at the same boundary within the
@@ -592,7 +612,7 @@ impl<R: Real> Tracer<R> {
                 time: self.time(),
             });
         }
-        let Some((key, t)) = self.queue.peek() else {
+        let Some((key, t)) = self.queue.next_event() else {
             // Nothing left can happen (every front dropped): the rod is free
             // for good only if it moves away; otherwise this is a limit case.
             return Err(WaveError::TimeLimit { time: self.time() });
@@ -605,14 +625,19 @@ impl<R: Real> Tracer<R> {
         self.events += 1;
         self.now = t;
         let kind = match key {
-            EventKey::Lane(index) => {
-                let layer = self.lanes[index as usize].layer;
+            EventKey::Layer(layer) => {
+                let layer = layer as usize;
                 if self.merged
                     && let Some(events) = self.leap(layer)?
                 {
                     StepKind::Leap { layer, events }
                 } else {
-                    let boundary = self.lanes[index as usize].target();
+                    // a layer is in the queue exactly while one of its lanes
+                    // holds a front (spawn, take_head and leaps keep it so)
+                    let (lane, _) = self
+                        .first_lane(layer)
+                        .expect("a scheduled layer holds a front");
+                    let boundary = self.lanes[lane].target();
                     self.boundary_event(boundary, t)?
                 }
             }

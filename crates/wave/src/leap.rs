@@ -22,7 +22,7 @@
 //! Leaps are made only in merged runs (lattice lanes), where the neighbours
 //! accept deposits in bulk; exact runs stay step by step, bit for bit.
 
-use crate::engine::{Tracer, past};
+use crate::engine::Tracer;
 use crate::error::WaveError;
 use crate::geometric::sums;
 use crate::lane::{Direction, Front, Lane, MergeRule};
@@ -746,7 +746,7 @@ impl<R: Real> Tracer<R> {
             let end = start + all[start..].iter().take_while(|d| d.0 == lane).count();
             let batch = all[start..end].iter().map(|d| (d.1, d.2)).collect();
             self.lanes[lane].place_all(batch);
-            self.reschedule(lane)?;
+            self.reschedule_layer(self.lanes[lane].layer)?;
             start = end;
         }
         all.clear();
@@ -774,7 +774,7 @@ impl<R: Real> Tracer<R> {
             lane.fronts.clear();
             lane.kept = 0;
             lane.fronts.extend(fronts);
-            self.reschedule(index)?;
+            self.reschedule_layer(i)?;
         }
         if self.lanes[ui].folded {
             // a folded top has no down lane: its fronts all went up
@@ -782,20 +782,6 @@ impl<R: Real> Tracer<R> {
             debug_assert!(moved.is_empty());
         }
         Ok(())
-    }
-
-    /// Puts lane `index`'s head in the queue (or takes it out).
-    fn reschedule(&mut self, index: usize) -> Result<(), WaveError> {
-        match self.lanes[index].head_arrival() {
-            Some(a) => self
-                .queue
-                .schedule(EventKey::Lane(index as u32), a, self.now)
-                .map_err(past),
-            None => {
-                self.queue.cancel(EventKey::Lane(index as u32));
-                Ok(())
-            }
-        }
     }
 }
 
