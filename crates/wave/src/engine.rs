@@ -562,8 +562,19 @@ impl<R: Real> Tracer<R> {
             self.folded_reflections += 1;
             self.down_base[lane.layer] -= front.jump;
         }
-        let layer = lane.layer;
-        self.reschedule_layer(layer)?;
+        // the layer's first arrival now: this lane's new head, or its
+        // sibling's (lanes of a layer are `2 i` and `2 i + 1`)
+        let (layer, next) = (lane.layer, lane.head_arrival());
+        let other = self.lanes[index ^ 1].head_arrival();
+        let first = match (next, other) {
+            (Some(a), Some(b)) => Some(if b < a { b } else { a }),
+            (a, b) => a.or(b),
+        };
+        let key = EventKey::Layer(layer as u32);
+        match first {
+            Some(at) => self.queue.schedule(key, at, self.now).map_err(past)?,
+            None => self.queue.cancel(key),
+        }
         Ok(Some((jump, front.id)))
     }
 
