@@ -481,18 +481,8 @@ impl<R: Real> Tracer<R> {
         if jump == R::zero() {
             return Ok(());
         }
-        let props = self.layers[layer];
-        if jump.abs() < props.drop_strain {
-            let d = self.drops.truncation;
-            self.drops.truncation = Truncation {
-                dropped_fronts: d.dropped_fronts + 1,
-                dropped_velocity: d.dropped_velocity
-                    + (jump.abs() * props.wave_speed / self.impact_speed).to_f64(),
-                ..d
-            };
-            let force = (props.modulus * jump.abs()).to_f64();
-            self.drops.dropped_force += force;
-            self.drops.dropped_force_time += force * t.to_f64();
+        if jump.abs() < self.layers[layer].drop_strain {
+            self.drop_front(layer, t, jump);
             return Ok(());
         }
         match dir {
@@ -504,18 +494,9 @@ impl<R: Real> Tracer<R> {
         let lane = &mut self.lanes[index];
         match lane.push(t, jump, id) {
             Pushed::New { was_empty } => {
-                let arrival = lane.arrival_of(t);
                 if self.record.fronts {
-                    let u = &self.units;
-                    self.recording.fronts.push(FrontRecord {
-                        id,
-                        layer,
-                        direction: dir,
-                        born: t.to_f64() * u.time,
-                        arrives: arrival.to_f64() * u.time,
-                        jump: jump.to_f64() * u.strain(),
-                        parents: parents.to_vec(),
-                    });
+                    let arrives = lane.arrival_of(t);
+                    self.record_front(id, (layer, dir), (t, arrives), jump, parents);
                 }
                 self.next_id += 1;
                 if was_empty {
@@ -533,15 +514,57 @@ impl<R: Real> Tracer<R> {
                 if moved_head {
                     self.reschedule_layer(layer)?;
                 }
-                if self.record.fronts
-                    && let Some(rec) = self.recording.fronts.get_mut(id as usize)
-                {
-                    rec.jump += jump.to_f64() * self.units.strain();
-                    rec.parents.extend_from_slice(parents);
+                if self.record.fronts {
+                    self.record_merge(id, jump, parents);
                 }
             }
         }
         Ok(())
+    }
+
+    /// Counts a front too small to keep: what it carried goes into the
+    /// error estimate (see [`Tracer::dropped_error_bound`]). Rare, so kept
+    /// out of the event loop's hot path.
+    #[cold]
+    pub(crate) fn drop_front(&mut self, layer: usize, born: R, jump: R) {
+        let l = self.layers[layer];
+        let d = &mut self.drops;
+        d.truncation.dropped_fronts += 1;
+        d.truncation.dropped_velocity += (jump.abs() * l.wave_speed / self.impact_speed).to_f64();
+        let force = (l.modulus * jump.abs()).to_f64();
+        d.dropped_force += force;
+        d.dropped_force_time += force * born.to_f64();
+    }
+
+    /// Records a new front (only when fronts are recorded).
+    #[cold]
+    fn record_front(
+        &mut self,
+        id: u32,
+        (layer, direction): (usize, Direction),
+        (born, arrives): (R, R),
+        jump: R,
+        parents: &[u32],
+    ) {
+        let u = &self.units;
+        self.recording.fronts.push(FrontRecord {
+            id,
+            layer,
+            direction,
+            born: born.to_f64() * u.time,
+            arrives: arrives.to_f64() * u.time,
+            jump: jump.to_f64() * u.strain(),
+            parents: parents.to_vec(),
+        });
+    }
+
+    /// Adds a merged front's jump and parents to its record.
+    #[cold]
+    fn record_merge(&mut self, id: u32, jump: R, parents: &[u32]) {
+        if let Some(rec) = self.recording.fronts.get_mut(id as usize) {
+            rec.jump += jump.to_f64() * self.units.strain();
+            rec.parents.extend_from_slice(parents);
+        }
     }
 
     /// Takes the head of lane `index` if it arrives by `deadline`: its

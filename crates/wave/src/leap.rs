@@ -526,17 +526,6 @@ impl<R: Real> Tracer<R> {
         k.max(from)
     }
 
-    /// Accounts for a front dropped at `born` in layer `i`.
-    fn drop_front(&mut self, i: usize, born: R, jump: R) {
-        let l = self.layers[i];
-        let d = &mut self.drops;
-        d.truncation.dropped_fronts += 1;
-        d.truncation.dropped_velocity += (jump.abs() * l.wave_speed / self.impact_speed).to_f64();
-        let force = (l.modulus * jump.abs()).to_f64();
-        d.dropped_force += force;
-        d.dropped_force_time += force * born.to_f64();
-    }
-
     /// The earliest time the wall could decide something: in contact, the
     /// first return making the wall strain grazing or tensile; in flight,
     /// the earliest the bottom could come down, from its lowest velocity.
