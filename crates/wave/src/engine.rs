@@ -121,6 +121,14 @@ pub struct Decisions {
     pub near_grazing: u64,
     /// The smallest relative margin met.
     pub smallest_margin: f64,
+    /// Settled by a tolerance rather than by the arithmetic: arrivals (or
+    /// births) more than rounding apart combined by the simultaneity
+    /// window, and wall strains within the grazing tolerance of zero taken
+    /// as zero. Each moved the run by up to the tolerance; the solver
+    /// measures what they did to `e` by a rerun with tighter tolerances.
+    pub within_tolerance: u64,
+    /// Of those, the wall strains taken as zero.
+    pub grazed: u64,
 }
 
 /// Drops and merges, with what the error estimate needs of them.
@@ -164,6 +172,8 @@ pub struct Tracer<R: Real> {
     /// The escape bound of the rod (DESIGN.md §2), in the run's arithmetic.
     escape: EscapeBound<R>,
     pub(crate) simultaneity: R,
+    /// The shortest transit time: the scale of rounding in a time.
+    simultaneity_scale: R,
     pub(crate) grazing_strain: R,
     pub(crate) merged: bool,
     max_events: u64,
@@ -299,6 +309,7 @@ impl<R: Real> Tracer<R> {
             mass: of(rod.scaled_mass()),
             escape: EscapeBound::new(of(rod.scaled_compliance_moment()), of(rod.scaled_mass())),
             simultaneity,
+            simultaneity_scale: of(t_min),
             grazing_strain: of(config.grazing_tolerance) * vb / c0,
             merged,
             max_events: config.max_events,
@@ -507,7 +518,11 @@ impl<R: Real> Tracer<R> {
                 id,
                 moved_head,
                 beyond_simultaneity,
+                gap,
             } => {
+                if gap > R::zero() {
+                    self.note_combined(gap);
+                }
                 if beyond_simultaneity {
                     self.drops.truncation.merged_fronts += 1;
                 }
@@ -567,14 +582,31 @@ impl<R: Real> Tracer<R> {
         }
     }
 
+    /// Counts a combination of two instants `gap > 0` apart if the gap is
+    /// more than rounding (a few ulps of the time and of the shortest
+    /// transit): a tie that rounding split is no use of the tolerance.
+    #[cold]
+    fn note_combined(&mut self, gap: R) {
+        let ulps = R::of(64.0 * f64::EPSILON);
+        if gap > ulps * (self.now.abs() + self.simultaneity_scale) {
+            self.decisions.within_tolerance += 1;
+        }
+    }
+
     /// Takes the head of lane `index` if it arrives by `deadline`: its
     /// delivered jump and id.
     fn take_head(&mut self, index: usize, deadline: R) -> Result<Option<(R, u32)>, WaveError> {
         let lane = &mut self.lanes[index];
         match lane.head_arrival() {
-            Some(t) if t <= deadline => {}
+            Some(t) if t <= deadline => {
+                if t > self.now {
+                    let gap = t - self.now;
+                    self.note_combined(gap);
+                }
+            }
             _ => return Ok(None),
         }
+        let lane = &mut self.lanes[index];
         let Some(front) = lane.pop() else {
             return Ok(None);
         };
@@ -776,7 +808,12 @@ impl<R: Real> Tracer<R> {
             let c0 = self.layers[0].wave_speed;
             if let ContactState::InContact { strain } = self.contact {
                 let scale = self.impact_speed / c0;
-                self.note_decision((strain + R::of(2.0) * from_above) / scale);
+                let rigid = strain + R::of(2.0) * from_above;
+                self.note_decision(rigid / scale);
+                if rigid != R::zero() && rigid.abs() <= self.grazing_strain {
+                    self.decisions.within_tolerance += 1;
+                    self.decisions.grazed += 1;
+                }
             }
             let r = wall::reflect(self.contact, from_above, c0, t, self.grazing_strain);
             self.contact = r.state;
