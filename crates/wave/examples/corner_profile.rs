@@ -1,10 +1,11 @@
-//! Runs the paper's hard corner (x = 0.995, alpha = 0.005) many times, for
-//! profilers: `valgrind --tool=callgrind` counts instructions per event
-//! without the noise of a shared machine.
+//! Runs the event loop at the paper's hard corner (x = 0.995, alpha =
+//! 0.005) many times, for profilers: `valgrind --tool=callgrind` counts
+//! instructions per event without the noise of a shared machine. One exact
+//! run of the tracer each time (not the point's error estimate).
 //!
 //! cargo run --release -p impact-wave --example corner_profile -- [REPEATS]
 use impact_model::Bilayer;
-use impact_wave::{WaveConfig, solve};
+use impact_wave::{WaveConfig, WaveEngine};
 
 fn main() {
     let repeats: u32 = std::env::args()
@@ -18,9 +19,10 @@ fn main() {
     let (mut events, mut steps) = (0, 0);
     let start = std::time::Instant::now();
     for _ in 0..repeats {
-        let s = solve(&rod, &config).expect("the corner finishes");
-        events += s.engine.events();
-        steps += s.engine.steps();
+        let mut engine = WaveEngine::new(&rod, config.clone()).expect("a valid rod");
+        engine.run().expect("the corner finishes");
+        events += engine.events();
+        steps += engine.steps();
     }
     let ns = start.elapsed().as_secs_f64() * 1e9;
     println!(
