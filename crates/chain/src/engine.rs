@@ -1,16 +1,17 @@
 //! The chain's time loop: Beeman springs, implicit dashpots, unilateral wall.
 //!
-//! A viscous chain keeps Beeman's whole state (`u, v, a, a_prev`): its
-//! dashpots act on velocities. An elastic chain needs positions only (the
-//! wall impulse, the contacts and the escape decision depend on nothing
-//! else), so it runs [`VerletChain`], Beeman's positions as Verlet's, and
-//! rebuilds Beeman's velocities when they are asked for.
+//! An elastic chain needs positions only (the wall impulse, the contacts
+//! and the escape decision depend on nothing else), so it runs
+//! [`VerletChain`], Beeman's positions as Verlet's, and rebuilds Beeman's
+//! velocities when they are asked for. A viscous chain runs
+//! [`ViscousChain`]: Beeman's whole state (`u, v, a, a_prev`) on the masses
+//! its dashpots act on, Verlet's sweep on the others.
 
 use crate::config::{ChainConfig, ChainStop};
-use crate::damping::Dashpots;
 use crate::error::ChainError;
 use crate::layout::ChainLayout;
-use crate::verlet::{Edge, Run, VerletChain, edge_dt2_acceleration, spring_runs};
+use crate::verlet::VerletChain;
+use crate::viscous::ViscousChain;
 use impact_model::escape::{EscapeBound, Margin, internal_energy};
 use impact_model::{ContactHistory, EngineKind, Outcome, Rod, StopReason, WallContact, WallSample};
 use serde::Serialize;
@@ -45,25 +46,21 @@ const REST_ENERGY: f64 = 1e-12;
 /// chain stop later (a few more steps), never wrongly.
 const INTEGRATOR_MARGIN: f64 = 0.05;
 
+/// The kernel that steps the masses.
+#[derive(Debug, Clone)]
+enum Kernel {
+    /// No dashpot anywhere: positions only.
+    Elastic(VerletChain),
+    /// Dashpots somewhere: Beeman's state where they act (boxed: it holds
+    /// the dashpots' factors too).
+    Viscous(Box<ViscousChain>),
+}
+
 /// The discrete chain for one rod.
 #[derive(Debug, Clone)]
 pub struct ChainEngine {
     layout: ChainLayout,
-    /// The elastic chain's kernel; `None` when dashpots need Beeman's state.
-    verlet: Option<VerletChain>,
-    /// Displacement of each mass from its undeformed height (Beeman's
-    /// state: empty when `verlet` runs).
-    u: Vec<f64>,
-    v: Vec<f64>,
-    /// Spring accelerations now and one step ago (Beeman).
-    a: Vec<f64>,
-    a_prev: Vec<f64>,
-    /// Beeman's springs as runs of one `k / m` (no per-mass arrays).
-    runs: Vec<Run>,
-    edges: Vec<Edge>,
-    /// `k_0 / m_0`: the wall spring, acting while `u_0 < 0`.
-    wall_spring: f64,
-    dashpots: Option<Dashpots>,
+    kernel: Kernel,
     wall_contact: WallContact,
     dt: f64,
     t: f64,
@@ -92,32 +89,20 @@ impl ChainEngine {
     pub fn new(rod: &Rod, config: ChainConfig) -> Result<Self, ChainError> {
         config.check()?;
         let layout = ChainLayout::new(rod, config.masses)?;
-        let n = layout.len();
         let dt = layout.paper_time_step() * config.dt_factor;
-        let dashpots = layout
-            .is_viscous()
-            .then(|| Dashpots::new(&layout.mass, &layout.viscosity, dt));
+        let kernel = if layout.is_viscous() {
+            Kernel::Viscous(Box::new(ViscousChain::new(&layout, dt, rod.impact_speed())))
+        } else {
+            Kernel::Elastic(VerletChain::new(&layout, dt, rod.impact_speed()))
+        };
         let horizon = match config.stop {
             ChainStop::Horizon { factor } => factor * rod.max_transit_time(),
             ChainStop::Escape => f64::INFINITY,
         };
-        let verlet = dashpots
-            .is_none()
-            .then(|| VerletChain::new(&layout, dt, rod.impact_speed()));
-        let beeman = if verlet.is_some() { 0 } else { n };
-        let (runs, edges) = spring_runs(&layout, 1.0);
         Ok(Self {
-            verlet,
-            runs,
-            edges,
-            wall_spring: layout.stiffness[0] / layout.mass[0],
+            kernel,
             escape: EscapeBound::new(layout.compliance_moment(), layout.mass.iter().sum()),
             total_mass: layout.mass.iter().sum(),
-            u: vec![0.0; beeman],
-            v: vec![-rod.impact_speed(); beeman],
-            a: vec![0.0; beeman],
-            a_prev: vec![0.0; beeman],
-            dashpots,
             wall_contact: rod.wall_contact(),
             dt,
             t: 0.0,
@@ -141,7 +126,7 @@ impl ChainEngine {
     /// True when the dashpot kernel runs; an elastic scene never does any
     /// dashpot work.
     pub fn uses_dashpots(&self) -> bool {
-        self.dashpots.is_some()
+        matches!(self.kernel, Kernel::Viscous(_))
     }
 
     /// How the rod was mapped onto masses.
@@ -176,22 +161,38 @@ impl ChainEngine {
 
     /// Displacements and velocities of the masses (Beeman's; an elastic
     /// chain rebuilds the velocities from its positions).
-    pub fn state(&self) -> (&[f64], Cow<'_, [f64]>) {
+    pub fn state(&self) -> (Cow<'_, [f64]>, Cow<'_, [f64]>) {
         (self.displacement(), self.velocities())
     }
 
-    fn displacement(&self) -> &[f64] {
-        self.verlet
-            .as_ref()
-            .map_or(self.u.as_slice(), VerletChain::displacement)
+    fn displacement(&self) -> Cow<'_, [f64]> {
+        match &self.kernel {
+            Kernel::Elastic(k) => Cow::Borrowed(k.displacement()),
+            Kernel::Viscous(k) => k.displacement(),
+        }
+    }
+
+    /// Displacement of mass 0 (the wall's) now.
+    fn u0(&self) -> f64 {
+        match &self.kernel {
+            Kernel::Elastic(k) => k.displacement()[0],
+            Kernel::Viscous(k) => k.u0(),
+        }
     }
 
     fn velocities(&self) -> Cow<'_, [f64]> {
-        self.verlet
-            .as_ref()
-            .map_or(Cow::Borrowed(self.v.as_slice()), |k| {
-                Cow::Owned(k.velocities())
-            })
+        match &self.kernel {
+            Kernel::Elastic(k) => Cow::Owned(k.velocities()),
+            Kernel::Viscous(k) => Cow::Owned(k.velocities()),
+        }
+    }
+
+    /// Beeman's velocity of mass `j` now.
+    fn velocity(&self, j: usize) -> f64 {
+        match &self.kernel {
+            Kernel::Elastic(k) => k.velocity(j),
+            Kernel::Viscous(k) => k.velocity(j),
+        }
     }
 
     /// Whether the bottom mass touches the wall now (its element compressed).
@@ -205,7 +206,7 @@ impl ChainEngine {
     /// what is left; the rod would need energy to leave.
     fn rests_on_wall(&self) -> bool {
         self.wall_contact == WallContact::Paper
-            && self.dashpots.is_some()
+            && self.uses_dashpots()
             && self.history.in_contact()
             && self.stop == ChainStop::Escape
             && self.mechanical_energy()
@@ -245,15 +246,10 @@ impl ChainEngine {
         self.layout
             .mass
             .iter()
-            .zip(self.displacement())
+            .zip(self.displacement().iter())
             .map(|(m, u)| m * u)
             .sum::<f64>()
             / self.total_mass
-    }
-
-    /// Wall spring force on mass 0 (upward positive) for displacement `u0`.
-    fn spring_wall_force(&self, u0: f64) -> f64 {
-        -self.layout.stiffness[0] * u0.min(0.0)
     }
 
     /// One step of `dt`; returns why the run stops here, if it does (the
@@ -261,16 +257,18 @@ impl ChainEngine {
     /// [`Self::run`] would). Stepping on after a stop is allowed.
     pub fn step(&mut self) -> Result<Option<StopReason>, ChainError> {
         let dt = self.dt;
-        let u0_old = self.displacement()[0];
-        let (force, wall_impulse) = match &mut self.verlet {
-            Some(kernel) => {
+        let u0_old = self.u0();
+        let (force, wall_impulse) = match &mut self.kernel {
+            Kernel::Elastic(kernel) => {
                 kernel.step();
                 (
                     -self.layout.stiffness[0] * kernel.displacement()[0].min(0.0),
                     0.0,
                 )
             }
-            None => self.beeman_step(u0_old),
+            Kernel::Viscous(kernel) => {
+                kernel.step(&self.layout.mass, self.wall_force, self.wall_contact)
+            }
         };
         self.impulse += 0.5 * dt * (self.wall_force + force) + wall_impulse;
         self.wall_force = force;
@@ -278,7 +276,7 @@ impl ChainEngine {
         self.steps += 1;
         self.track_contact(u0_old);
         self.record();
-        if self.steps.is_multiple_of(1024) && !self.displacement()[0].is_finite() {
+        if self.steps.is_multiple_of(1024) && !self.u0().is_finite() {
             let mass = self
                 .displacement()
                 .iter()
@@ -290,34 +288,6 @@ impl ChainEngine {
             self.stopped = self.stop_now();
         }
         Ok(self.stopped)
-    }
-
-    /// One Beeman step of the springs, then the dashpots; returns the wall
-    /// spring's force at the new positions and the dashpots' wall impulse.
-    fn beeman_step(&mut self, u0_old: f64) -> (f64, f64) {
-        let dt = self.dt;
-        beeman_positions(&mut self.u, &self.v, &self.a, &self.a_prev, dt);
-        let force = self.spring_wall_force(self.u[0]);
-        let spring_impulse = 0.5 * dt * (self.wall_force + force);
-        let springs = Springs {
-            runs: &self.runs,
-            edges: &self.edges,
-            wall: self.wall_spring,
-        };
-        springs.beeman_velocities(&self.u, &mut self.v, &self.a, &mut self.a_prev, dt);
-        // `a_prev` now holds the new accelerations: the shift is a swap
-        std::mem::swap(&mut self.a, &mut self.a_prev);
-        let mut wall_impulse = 0.0;
-        if let Some(d) = &mut self.dashpots {
-            wall_impulse += d.step(
-                &self.layout.mass,
-                &mut self.v,
-                compressed_fraction(u0_old, self.u[0]),
-                spring_impulse,
-                self.wall_contact,
-            );
-        }
-        (force, wall_impulse)
     }
 
     /// The stop rules after a step: the horizon, the escape bound, rest.
@@ -339,7 +309,7 @@ impl ChainEngine {
     /// Detects wall-spring crossings of zero, timed by linear interpolation
     /// within the step.
     fn track_contact(&mut self, u0_old: f64) {
-        let u0 = self.displacement()[0];
+        let u0 = self.u0();
         let was = self.history.in_contact();
         let now = u0 < 0.0;
         if was == now {
@@ -380,11 +350,8 @@ impl ChainEngine {
         if let Some(every) = rec.wall_every
             && self.steps.is_multiple_of(every.max(1))
         {
-            let u0 = self.displacement()[0];
-            let velocity = self
-                .verlet
-                .as_ref()
-                .map_or_else(|| self.v[0], |k| k.velocity(0));
+            let u0 = self.u0();
+            let velocity = self.velocity(0);
             self.recording.wall.push(WallSample {
                 time: self.t,
                 strain: u0.min(0.0) / self.layout.rest_length[0],
@@ -460,79 +427,5 @@ impl ChainEngine {
         o.wall_contact = self.wall_contact;
         o.steps = Some(self.steps);
         o
-    }
-}
-
-/// The fraction of a step from `u0_old` to `u0` during which the wall
-/// element was compressed (`u0 < 0`), the crossing timed by linear
-/// interpolation: a wall dashpot switched on or off inside a step acts for
-/// that fraction, which keeps the step second order where the contact
-/// begins or ends (switching it for whole steps is first order).
-fn compressed_fraction(u0_old: f64, u0: f64) -> f64 {
-    match (u0_old < 0.0, u0 < 0.0) {
-        (true, true) => 1.0,
-        (false, false) => 0.0,
-        (true, false) => u0_old / (u0_old - u0),
-        (false, true) => u0 / (u0 - u0_old),
-    }
-}
-
-/// Beeman positions: `u += dt v + dt^2 (4 a - a_prev) / 6`.
-fn beeman_positions(u: &mut [f64], v: &[f64], a: &[f64], a_prev: &[f64], dt: f64) {
-    let c = dt * dt / 6.0;
-    for (((u, v), a), ap) in u.iter_mut().zip(v).zip(a).zip(a_prev) {
-        *u += dt * v + c * (4.0 * a - ap);
-    }
-}
-
-/// Beeman's springs, borrowed from the engine.
-struct Springs<'a> {
-    runs: &'a [Run],
-    edges: &'a [Edge],
-    /// `k_0 / m_0`.
-    wall: f64,
-}
-
-impl Springs<'_> {
-    /// New spring accelerations from the new positions, then Beeman
-    /// velocities `v += dt (2 a_new + 5 a - a_prev) / 6`; `a_new` goes
-    /// into `a_prev`, which the caller then swaps with `a` (one store per
-    /// mass instead of two for the shift). The wall spring (element 0) pushes only while
-    /// compressed.
-    ///
-    /// Inside a run the acceleration is `c ((u_above - u) - (u - u_below))`
-    /// with one `c = k / m`: six equal-length slices and no index
-    /// arithmetic, so the loop compiles to packed SIMD (`mulpd`/`subpd`)
-    /// with no per-mass `k` or `1 / m` to load; the edge masses (mass 0,
-    /// layer tops, the top) take the general formula, outside the loop.
-    fn beeman_velocities(&self, u: &[f64], v: &mut [f64], a: &[f64], a_prev: &mut [f64], dt: f64) {
-        let c = dt / 6.0;
-        for r in self.runs {
-            let (start, end, km) = (r.start, r.end, r.c);
-            let (lo, mid, hi) = (
-                &u[start - 1..end - 1],
-                &u[start..end],
-                &u[start + 1..end + 1],
-            );
-            let (v, a, ap) = (&mut v[start..end], &a[start..end], &mut a_prev[start..end]);
-            for (((((v, a), ap), &lo), &mid), &hi) in v
-                .iter_mut()
-                .zip(a)
-                .zip(ap.iter_mut())
-                .zip(lo)
-                .zip(mid)
-                .zip(hi)
-            {
-                let acc = km * ((hi - mid) - (mid - lo));
-                *v += c * (2.0 * acc + 5.0 * a - *ap);
-                *ap = acc;
-            }
-        }
-        for e in self.edges {
-            let j = e.mass;
-            let acc = edge_dt2_acceleration(self.wall, e, |i| u[i]);
-            v[j] += c * (2.0 * acc + 5.0 * a[j] - a_prev[j]);
-            a_prev[j] = acc;
-        }
     }
 }

@@ -19,6 +19,7 @@ mod engine;
 mod error;
 mod layout;
 mod verlet;
+mod viscous;
 pub use verlet::VerletChain;
 
 pub use config::{ChainConfig, ChainRecord, ChainStop};

@@ -127,29 +127,23 @@ impl VerletChain {
     /// a pass of its own). Every run and edge writes the new `u` of its own
     /// masses, and together they cover the chain.
     pub fn step(&mut self) {
-        let (u, d, next) = (&self.now, &mut self.motion, &mut self.next);
-        for r in &self.runs {
-            layer_run(u, d, next, r.start, r.end, r.c);
-        }
-        for e in &self.edges {
-            let j = e.mass;
-            d[j] += edge_dt2_acceleration(self.wall, e, |i| u[i]);
-            next[j] = u[j] + d[j];
-        }
+        let sweep = Sweep {
+            runs: &self.runs,
+            edges: &self.edges,
+            wall: self.wall,
+        };
+        sweep.step(&self.now, &mut self.motion, &mut self.next);
         std::mem::swap(&mut self.now, &mut self.next);
     }
 
     /// `dt^2` times the acceleration of mass `j` at positions `u(i)`.
     fn dt2_acceleration(&self, j: usize, u: impl Fn(usize) -> f64) -> f64 {
-        if let Some(e) = self.edges.iter().find(|e| e.mass == j) {
-            return edge_dt2_acceleration(self.wall, e, u);
-        }
-        let c = self
-            .runs
-            .iter()
-            .find(|r| (r.start..r.end).contains(&j))
-            .map_or(0.0, |r| r.c);
-        c * ((u(j - 1) - u(j)) + (u(j + 1) - u(j)))
+        let sweep = Sweep {
+            runs: &self.runs,
+            edges: &self.edges,
+            wall: self.wall,
+        };
+        sweep.dt2_acceleration(j, u)
     }
 
     /// Beeman's velocities now, rebuilt from the positions and the motion:
@@ -164,6 +158,69 @@ impl VerletChain {
         let a_before = self.dt2_acceleration(j, |i| self.now[i] - self.motion[i]);
         (self.motion[j] + (2.0 * a_now + a_before) / 6.0) / self.dt
     }
+}
+
+/// Verlet's sweep over some masses: their runs and edges, with `dt^2 k / m`
+/// constants (`wall`: `dt^2 k_0 / m_0`), borrowed from a kernel.
+pub(crate) struct Sweep<'a> {
+    pub(crate) runs: &'a [Run],
+    pub(crate) edges: &'a [Edge],
+    pub(crate) wall: f64,
+}
+
+impl Sweep<'_> {
+    /// `d += dt^2 a(u)`, `next = u + d` for the sweep's masses: every run
+    /// and edge writes the new `u` of its own masses and reads `u` alone,
+    /// so masses outside the sweep may be moved by another rule, before or
+    /// after, as long as they leave `u` as it was.
+    pub(crate) fn step(&self, u: &[f64], d: &mut [f64], next: &mut [f64]) {
+        for r in self.runs {
+            layer_run(u, d, next, r.start, r.end, r.c);
+        }
+        for e in self.edges {
+            let j = e.mass;
+            d[j] += edge_dt2_acceleration(self.wall, e, |i| u[i]);
+            next[j] = u[j] + d[j];
+        }
+    }
+
+    /// `dt^2` times the acceleration of mass `j` (one of the sweep's) at
+    /// positions `u(i)`.
+    pub(crate) fn dt2_acceleration(&self, j: usize, u: impl Fn(usize) -> f64) -> f64 {
+        if let Some(e) = self.edges.iter().find(|e| e.mass == j) {
+            return edge_dt2_acceleration(self.wall, e, u);
+        }
+        let c = self
+            .runs
+            .iter()
+            .find(|r| (r.start..r.end).contains(&j))
+            .map_or(0.0, |r| r.c);
+        c * ((u(j - 1) - u(j)) + (u(j + 1) - u(j)))
+    }
+}
+
+/// The runs and edges of [`spring_runs`] restricted to the masses `keep`
+/// selects: a run is cut where it leaves them.
+pub(crate) fn restrict(
+    runs: &[Run],
+    edges: &[Edge],
+    keep: impl Fn(usize) -> bool,
+) -> (Vec<Run>, Vec<Edge>) {
+    let mut kept: Vec<Run> = Vec::new();
+    for r in runs {
+        for j in (r.start..r.end).filter(|&j| keep(j)) {
+            match kept.last_mut() {
+                Some(k) if k.end == j && k.c == r.c => k.end += 1,
+                _ => kept.push(Run {
+                    start: j,
+                    end: j + 1,
+                    c: r.c,
+                }),
+            }
+        }
+    }
+    let edges = edges.iter().filter(|e| keep(e.mass)).copied().collect();
+    (kept, edges)
 }
 
 /// `dt^2` times the acceleration of an edge mass at positions `u(i)`.

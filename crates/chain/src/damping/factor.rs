@@ -4,13 +4,8 @@
 //! blocks up exactly.
 
 use super::GAMMA;
-
-/// Blocks whose sweeps run side by side. A sweep is a linear recurrence,
-/// one multiply and one subtraction on its critical path per mass (6
-/// cycles on a current core), while the core can issue the whole step of
-/// a mass in about one: independent recurrences, one per block, fill that
-/// gap (see [`Factor`]).
-pub(super) const LANES: usize = 4;
+use super::quad::{LANES, Quad};
+use super::tails::{LaneTails, Tail};
 
 /// A chain shorter than `LANES * MIN_LANE` masses sweeps in one piece: its
 /// fix-ups would cost about what the blocks save.
@@ -25,51 +20,6 @@ const NEGLIGIBLE: f64 = 1e-20;
 /// further, and subnormal numbers are slow.
 const FLUSH: f64 = 1e-200;
 
-/// How the homogeneous solutions of a sweep's recurrence carry the two
-/// values just outside a block into it.
-///
-/// A block's sweep is started from zero; by linearity the true values in
-/// it are the local ones plus `p1 h1 + p2 h2`, where `p1`, `p2` are the
-/// true values at the two masses just outside the block (on the side the
-/// sweep comes from) and `h1`, `h2` the recurrence's solutions with no
-/// right-hand side started from `(1, 0)` and `(0, 1)` there. They depend on
-/// the factorisation only, and decay geometrically into the block (`P` is
-/// diagonally dominant; inside an elastic layer `L` is the identity and
-/// they vanish at once), so they are stored only while they matter, plus
-/// their exact values at the block's far edge, which carry the true values
-/// on to the next block.
-#[derive(Debug, Clone, Default)]
-struct Tail {
-    /// `h1`, `h2` at the block's masses nearest the edge they start from,
-    /// in mass order (both of one length).
-    near: [Vec<f64>; 2],
-    /// `h1`, `h2` at the block's two masses farthest from that edge, in the
-    /// order the sweep carries them (nearest the next block first).
-    far: [[f64; 2]; 2],
-}
-
-impl Tail {
-    /// The true values at the block's far edge from the local ones `ends`
-    /// and the true values `p` outside its near edge.
-    fn carry(&self, ends: [f64; 2], p: [f64; 2]) -> [f64; 2] {
-        let [h1, h2] = self.far;
-        [
-            ends[0] + (p[0] * h1[0] + p[1] * h2[0]),
-            ends[1] + (p[0] * h1[1] + p[1] * h2[1]),
-        ]
-    }
-
-    /// Adds `p1 h1 + p2 h2` to `x` (the block's masses nearest the edge,
-    /// in mass order): three equal-length slices, no index arithmetic, so
-    /// the loop compiles to packed `mulpd`/`addpd`.
-    fn fix(&self, x: &mut [f64], p: [f64; 2]) {
-        let [h1, h2] = &self.near;
-        for ((x, a), b) in x.iter_mut().zip(h1).zip(h2) {
-            *x += p[0] * a + p[1] * b;
-        }
-    }
-}
-
 /// `L D L^T` factors of `P = A M^-1 A`, `A = M - g h D` for one wall
 /// dashpot constant, stored for streaming sweeps.
 ///
@@ -81,7 +31,7 @@ impl Tail {
 /// the result is the one-piece sweep's to rounding (tested against
 /// [`Factor::solve`]).
 #[derive(Debug, Clone)]
-pub(super) struct Factor {
+pub(crate) struct Factor {
     /// `L[i][i-1]`, `L[i][i-2]`, two zeros past the end: the backward
     /// sweep reads `L[j+1][j]`, `L[j+2][j]` as `l1[j+1]`, `l2[j+2]`.
     l1: Vec<f64>,
@@ -92,14 +42,21 @@ pub(super) struct Factor {
     lane: usize,
     /// Step `i` of the forward sweep in the blocks: `[l1, l2]` of masses
     /// `k lane + i`, `k < LANES`.
-    fwd: Vec<[[f64; LANES]; 2]>,
-    /// Step `i` of the backward sweep: `[1 / d, l1[j + 1], l2[j + 2]]` of
-    /// masses `j = k lane + i`.
-    bwd: Vec<[[f64; LANES]; 3]>,
+    fwd: Vec<[Quad; 2]>,
+    /// Step `i` of the backward sweep: `1 / d` of masses `k lane + i`. Its
+    /// other coefficients, `l1[j + 1]` and `l2[j + 2]`, are the forward
+    /// sweep's at steps `i + 1` and `i + 2`: at a block's last two steps
+    /// they are the next block's, but there they multiply the zeros the
+    /// block's sweep starts from (the last block's top is a chain's top,
+    /// or its last masses are swept apart, see `solve_into`), so none are
+    /// stored twice.
+    bwd: Vec<Quad>,
     /// Forward sweep: blocks `1..LANES`, from their bottoms up.
     down: Vec<Tail>,
     /// Backward sweep: blocks `0..LANES - 1`, from their tops down.
     up: Vec<Tail>,
+    /// The same tails' near parts side by side in the lanes.
+    lane_tails: LaneTails,
     /// `M A^-1 e_0` while not negligible: its dot product with `v` is the
     /// first stage's velocity of mass 0, `V1_0 = (A^-1 M v)_0`, which the
     /// wall impulse needs. It decays from mass 0 like the sweeps' tails.
@@ -107,7 +64,7 @@ pub(super) struct Factor {
 }
 
 /// The block length for `n` masses: 0 (one piece) below `LANES * MIN_LANE`.
-pub(super) fn lane_length(n: usize) -> usize {
+pub(crate) fn lane_length(n: usize) -> usize {
     if n >= LANES * MIN_LANE { n / LANES } else { 0 }
 }
 
@@ -116,7 +73,7 @@ impl Factor {
     /// the wall element's replaced by `wall`, over a step `h`, cut into
     /// blocks of `lane` masses (0: one piece; otherwise `2 <= lane`,
     /// `LANES * lane <= n`).
-    pub(super) fn with_lane(mass: &[f64], c: &[f64], h: f64, wall: f64, lane: usize) -> Self {
+    pub(crate) fn with_lane(mass: &[f64], c: &[f64], h: f64, wall: f64, lane: usize) -> Self {
         let n = mass.len();
         let gh = GAMMA * h;
         let below = |i: usize| if i == 0 { wall } else { c[i] };
@@ -194,20 +151,20 @@ impl Factor {
             bwd: vec![],
             down: vec![],
             up: vec![],
+            lane_tails: LaneTails::default(),
             first_stage_0: vec![],
         };
         if lane > 0 {
-            let at = |x: &[f64], shift: usize, i: usize| -> [f64; LANES] {
-                std::array::from_fn(|k| x[k * lane + i + shift])
+            let at = |x: &[f64], shift: usize, i: usize| -> Quad {
+                Quad(std::array::from_fn(|k| x[k * lane + i + shift]))
             };
             f.fwd = (0..lane)
                 .map(|i| [at(&f.l1, 0, i), at(&f.l2, 0, i)])
                 .collect();
-            f.bwd = (0..lane)
-                .map(|i| [at(&f.inv_d, 0, i), at(&f.l1, 1, i), at(&f.l2, 2, i)])
-                .collect();
+            f.bwd = (0..lane).map(|i| at(&f.inv_d, 0, i)).collect();
             f.down = (1..LANES).map(|k| f.down_tail(k)).collect();
             f.up = (0..LANES - 1).map(|k| f.up_tail(k)).collect();
+            f.lane_tails = LaneTails::new(&f.down, &f.up);
         }
         // A^-1 e_0 = P^-1 A M^-1 e_0, and A^-1 is symmetric
         let mut w = vec![0.0; n];
@@ -321,14 +278,17 @@ impl Factor {
     /// Solves `P x = r`, `t` (`lane` long) the sweeps' scratch; `r` is
     /// overwritten.
     ///
-    /// The blocks' recurrences run in the lanes of `[f64; LANES]` arrays:
-    /// the forward sweep gathers `r` from the blocks into `t`, the backward
-    /// sweep scatters its result into `x`, and in between every operation
-    /// is elementwise on `LANES` numbers with one coefficient array per
-    /// step (`fwd`, `bwd`: one pointer each, no index arithmetic), which
-    /// the compiler packs into `mulpd`/`subpd` (two lanes per SSE2
-    /// register) and the core overlaps (independent recurrences).
-    pub(super) fn solve_into(&self, r: &mut [f64], t: &mut [[f64; LANES]], x: &mut [f64]) {
+    /// The blocks' recurrences run in the lanes of [`Quad`]s: the forward
+    /// sweep gathers `r` from the blocks into `t`, the backward sweep
+    /// scatters its result into `x`, and in between every operation is
+    /// elementwise on `LANES` numbers with the steps' coefficients (`fwd`,
+    /// `bwd`), which the compiler packs into `mulpd`/`subpd` (two lanes per
+    /// SSE2 register) and the core overlaps (independent recurrences). The
+    /// chain's long segments do not come here: the viscous kernel runs
+    /// these sweeps in its own passes, its state in the lanes
+    /// (`crate::viscous::blocked`); this is their reference in the chain's
+    /// arrays, for any segment and any block length.
+    pub(super) fn solve_into(&self, r: &mut [f64], t: &mut [Quad], x: &mut [f64]) {
         if self.lane == 0 {
             x.copy_from_slice(r);
             self.solve(x);
@@ -344,9 +304,10 @@ impl Factor {
         {
             let rs = lanes(r, s);
             for (i, (t, [a, b])) in t.iter_mut().zip(fwd).enumerate() {
+                let (a, b) = (a.0, b.0);
                 let y: [f64; LANES] =
                     std::array::from_fn(|k| (rs[k][i] - b[k] * y2[k]) - a[k] * y1[k]);
-                *t = y;
+                *t = Quad(y);
                 y2 = y1;
                 y1 = y;
             }
@@ -388,7 +349,16 @@ impl Factor {
         z2[LANES - 1] = b;
         {
             let mut xs = lanes_mut(x, s);
-            for (i, (y, [d, u1, u2])) in t.iter().zip(bwd).enumerate().rev() {
+            for (i, (y, d)) in t.iter().zip(bwd).enumerate().rev() {
+                // the last block's top steps take the rest's coefficients
+                let upper = |q: usize| -> [f64; LANES] {
+                    if i + q < s {
+                        fwd[i + q][q - 1].0
+                    } else {
+                        std::array::from_fn(|k| [l1, l2][q - 1][k * s + i + q])
+                    }
+                };
+                let (y, d, u1, u2) = (y.0, d.0, upper(1), upper(2));
                 let z: [f64; LANES] =
                     std::array::from_fn(|k| (y[k] * d[k] - u2[k] * z2[k]) - u1[k] * z1[k]);
                 for (x, z) in xs.iter_mut().zip(z) {
@@ -409,6 +379,80 @@ impl Factor {
             [x[start], x[start + 1]] = ends;
             q = ends;
         }
+    }
+
+    /// The forward sweep's steps in the blocks' lanes: `[l1, l2]` of the
+    /// masses `k lane + i` at step `i`.
+    pub(crate) fn forward_steps(&self) -> &[[Quad; 2]] {
+        &self.fwd
+    }
+
+    /// The backward sweep's steps in the blocks' lanes: `1 / d` of the
+    /// masses `k lane + i` at step `i` (its `l1[j + 1]`, `l2[j + 2]` are
+    /// the forward steps' `i + 1` and `i + 2`, zero past a block's top).
+    pub(crate) fn backward_steps(&self) -> &[Quad] {
+        &self.bwd
+    }
+
+    /// The forward sweep's fix-ups when every mass is in a lane (`LANES
+    /// lane` masses): `t[i]` holds the blocks' local sweeps at step `i`,
+    /// each started from zero, and leaves with the true `y = L^-1 r`. The
+    /// values each block's tails carry are found first (they need the
+    /// blocks' far ends alone), so the fix-ups of all blocks then go side
+    /// by side in the lanes.
+    pub(crate) fn fix_forward<S>(&self, steps: &mut [S], t: impl Fn(&mut S) -> &mut Quad) {
+        let s = self.lane;
+        let (mut p, mut ends) = ([[0.0; 2]; LANES], [[0.0; 2]; LANES]);
+        let (last, before) = (t(&mut steps[s - 1]).0, t(&mut steps[s - 2]).0);
+        let mut carried = [last[0], before[0]];
+        for (k, tail) in (1..LANES).zip(&self.down) {
+            p[k] = carried;
+            ends[k] = tail.carry([last[k], before[k]], carried);
+            carried = ends[k];
+        }
+        self.lane_tails.down.fix(steps, &t, p, |_| {});
+        for (k, [last, before]) in ends.into_iter().enumerate().skip(1) {
+            t(&mut steps[s - 1]).0[k] = last;
+            t(&mut steps[s - 2]).0[k] = before;
+        }
+    }
+
+    /// The backward sweep's fix-ups when every mass is in a lane: `x[i]`
+    /// holds the blocks' local sweeps at step `i`, each started from zero
+    /// at its top (the last block's from the true values above it), and
+    /// leaves with the true `x = P^-1 r`; `then` is called on every step
+    /// whose `x` changed (each block's top steps while its tail lasts, and
+    /// its steps 0 and 1), so that what was computed from `x` there can be
+    /// computed again.
+    pub(crate) fn fix_backward<S>(
+        &self,
+        steps: &mut [S],
+        x: impl Fn(&mut S) -> &mut Quad,
+        mut then: impl FnMut(&mut S),
+    ) {
+        let (mut q, mut ends) = ([[0.0; 2]; LANES], [[0.0; 2]; LANES]);
+        let (first, second) = (x(&mut steps[0]).0, x(&mut steps[1]).0);
+        let mut carried = [first[LANES - 1], second[LANES - 1]];
+        for (k, tail) in (0..LANES - 1).zip(&self.up).rev() {
+            q[k] = carried;
+            ends[k] = tail.carry([first[k], second[k]], carried);
+            carried = ends[k];
+        }
+        let near = self.lane_tails.up.near[0].len();
+        let s = steps.len();
+        self.lane_tails
+            .up
+            .fix(&mut steps[s - near..], &x, q, &mut then);
+        for (k, [first, second]) in ends.into_iter().enumerate().take(LANES - 1) {
+            x(&mut steps[0]).0[k] = first;
+            x(&mut steps[1]).0[k] = second;
+        }
+        steps[..2].iter_mut().for_each(then);
+    }
+
+    /// `M A^-1 e_0` while not negligible (see [`Factor::first_stage_0`]).
+    pub(crate) fn first_stage_weights(&self) -> &[f64] {
+        &self.first_stage_0
     }
 
     /// `(A^-1 M v)_0`, the first stage's velocity of mass 0: a dot product
@@ -443,9 +487,9 @@ fn lanes_mut(x: &mut [f64], s: usize) -> [&mut [f64]; LANES] {
 
 /// Mass `j`'s value in the forward sweep's storage: `t` for the blocks'
 /// first `LANES * s` masses (block `j / s`, step `j % s`), `r` after.
-fn slot<'a>(t: &'a mut [[f64; LANES]], r: &'a mut [f64], s: usize, j: usize) -> &'a mut f64 {
+fn slot<'a>(t: &'a mut [Quad], r: &'a mut [f64], s: usize, j: usize) -> &'a mut f64 {
     if j < LANES * s {
-        &mut t[j % s][j / s]
+        &mut t[j % s].0[j / s]
     } else {
         &mut r[j]
     }

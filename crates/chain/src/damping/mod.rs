@@ -36,12 +36,24 @@
 //! (1 - 2g) h D) v` with `P = A M^-1 A`, symmetric positive definite and
 //! pentadiagonal, factorised once (`L D L^T`) for each wall state. A solve
 //! is then one forward and one backward sweep, as backward Euler's was.
+//!
+//! Who runs it. [`Dashpots`] steps any segment (a run of dashpot-joined
+//! masses) in the chain's arrays, a long one in blocks (`Factor::solve_into`,
+//! tested here against the one-piece sweep). The chain's kernel
+//! (`crate::viscous`) gives it the short segments alone: a long one it
+//! steps itself in the lanes of the factor's blocked sweeps, Beeman's
+//! update fused with them (`crate::viscous::blocked`), with the same
+//! factors, tails and wall law.
 
 use impact_model::WallContact;
+use std::ops::Range;
 
 mod factor;
+mod quad;
+mod tails;
 
-use factor::{Factor, LANES, lane_length};
+pub(crate) use factor::{Factor, lane_length};
+pub(crate) use quad::{LANES, Quad};
 
 /// `g = 1 - 1/sqrt(2)`, SDIRK2's diagonal coefficient.
 pub(crate) const GAMMA: f64 = 1.0 - std::f64::consts::FRAC_1_SQRT_2;
@@ -107,6 +119,23 @@ impl Stencil {
     }
 }
 
+/// The runs of masses joined by dashpots (element `j`, constant `c[j]`,
+/// below mass `j`; `c[0]` the wall's): the masses with a dashpot below or
+/// above, each run ending where no dashpot joins a mass to the next. Only
+/// their velocities does a dashpot step change.
+pub(crate) fn segments(c: &[f64]) -> Vec<Range<usize>> {
+    let n = c.len();
+    let damped = |i: usize| c[i] != 0.0 || (i + 1 < n && c[i + 1] != 0.0);
+    let mut runs: Vec<Range<usize>> = Vec::new();
+    for i in (0..n).filter(|&i| damped(i)) {
+        match runs.last_mut() {
+            Some(r) if r.end == i && c[i] != 0.0 => r.end += 1,
+            _ => runs.push(i..i + 1),
+        }
+    }
+    runs
+}
+
 /// The dashpot step over `h`.
 ///
 /// `P` couples two masses only through a dashpot, so the chain splits into
@@ -141,30 +170,32 @@ struct Segment {
     /// The right-hand side, then the forward sweep's `L^-1 r`.
     rhs: Vec<f64>,
     /// The blocked sweeps' lanes.
-    lanes: Vec<[f64; LANES]>,
+    lanes: Vec<Quad>,
 }
 
 impl Dashpots {
     /// Dashpots of constants `c[j]` (element `j` below mass `j`) over a step
     /// `h`.
+    #[cfg(test)]
     pub fn new(mass: &[f64], c: &[f64], h: f64) -> Self {
-        let n = mass.len();
-        // a mass with a dashpot below or above (the wall's for mass 0)
-        let damped = |i: usize| c[i] != 0.0 || (i + 1 < n && c[i + 1] != 0.0);
-        let mut bounds: Vec<(usize, usize)> = Vec::new();
-        for i in (0..n).filter(|&i| damped(i)) {
-            match bounds.last_mut() {
-                Some((_, end)) if *end == i && c[i] != 0.0 => *end += 1,
-                _ => bounds.push((i, i + 1)),
-            }
-        }
+        Self::on(mass, c, h, &segments(c))
+    }
+
+    /// The dashpots of the segments `on` alone (some of [`segments`]`(c)`),
+    /// over a step `h`: the velocities of the other masses are left as
+    /// they are.
+    pub(crate) fn on(mass: &[f64], c: &[f64], h: f64, on: &[Range<usize>]) -> Self {
         Self {
-            segments: bounds
+            segments: on
                 .iter()
-                .map(|&(a, b)| (a, Segment::new(&mass[a..b], &c[a..b], h)))
+                .map(|r| (r.start, Segment::new(&mass[r.clone()], &c[r.clone()], h)))
                 .collect(),
-            wall: c[0],
-            scratch: vec![0.0; n],
+            wall: if on.iter().any(|r| r.start == 0) {
+                c[0]
+            } else {
+                0.0
+            },
+            scratch: vec![0.0; mass.len()],
         }
     }
 
@@ -251,7 +282,7 @@ impl Segment {
             lane,
             stencil: Stencil { runs, edges },
             rhs: vec![0.0; n],
-            lanes: vec![[0.0; LANES]; lane],
+            lanes: vec![Quad::ZERO; lane],
         }
     }
 
@@ -381,7 +412,7 @@ mod tests {
             }
             let m = &mass[*start..*start + n];
             segment.lane = l;
-            segment.lanes = vec![[0.0; LANES]; l];
+            segment.lanes = vec![Quad::ZERO; l];
             segment.with_wall = Factor::with_lane(m, &segment.c, h, segment.c[0], l);
             segment.free = Factor::with_lane(m, &segment.c, h, 0.0, l);
         }
