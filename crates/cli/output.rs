@@ -97,6 +97,7 @@ pub fn summary(title: &str, o: &Timed<Outcome>) -> String {
             ("merged fronts", est.merged),
             ("rounding", est.rounding),
             ("reduced model", est.reduced),
+            ("tolerances", est.tolerances),
         ] {
             if value > 0.0 {
                 parts.push(format!("{name} {value:.1e}"));

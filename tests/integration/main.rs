@@ -11,3 +11,4 @@ mod explore;
 mod run;
 mod support;
 mod sweep;
+mod tracker;

@@ -1,4 +1,4 @@
-//! The viscous kernel (`crates/chain/src/viscous.rs`, the dashpot solve in
+//! The viscous kernel (`crates/chain/src/viscous/`, the dashpot solve in
 //! `crates/chain/src/damping/`) against the plain method written out here:
 //! Beeman on every mass with its six arrays, then the SDIRK2 step of the
 //! dashpot flow over the whole chain, its two stages folded into one

@@ -84,6 +84,12 @@ pub struct ErrorEstimate {
     pub double_precision_loss: Option<f64>,
     /// A reduced model (a layer treated as rigid, a chatter taken as rest).
     pub reduced: f64,
+    /// The engine's tolerances (arrivals combined within the simultaneity
+    /// window, wall strains within the grazing tolerance taken as zero):
+    /// twice the difference from a rerun with tolerances a thousand times
+    /// tighter, when the run used them.
+    #[serde(default)]
+    pub tolerances: f64,
     /// How the parts were obtained, in words.
     pub method: String,
 }
@@ -91,7 +97,7 @@ pub struct ErrorEstimate {
 impl ErrorEstimate {
     /// Recomputes `bound` from the parts.
     pub fn total(mut self) -> Self {
-        self.bound = self.dropped + self.merged + self.rounding + self.reduced;
+        self.bound = self.dropped + self.merged + self.rounding + self.reduced + self.tolerances;
         self
     }
 }

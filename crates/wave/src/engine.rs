@@ -121,6 +121,14 @@ pub struct Decisions {
     pub near_grazing: u64,
     /// The smallest relative margin met.
     pub smallest_margin: f64,
+    /// Settled by a tolerance rather than by the arithmetic: arrivals (or
+    /// births) more than rounding apart combined by the simultaneity
+    /// window, and wall strains within the grazing tolerance of zero taken
+    /// as zero. Each moved the run by up to the tolerance; the solver
+    /// measures what they did to `e` by a rerun with tighter tolerances.
+    pub within_tolerance: u64,
+    /// Of those, the wall strains taken as zero.
+    pub grazed: u64,
 }
 
 /// Drops and merges, with what the error estimate needs of them.
@@ -164,6 +172,8 @@ pub struct Tracer<R: Real> {
     /// The escape bound of the rod (DESIGN.md §2), in the run's arithmetic.
     escape: EscapeBound<R>,
     pub(crate) simultaneity: R,
+    /// The shortest transit time: the scale of rounding in a time.
+    simultaneity_scale: R,
     pub(crate) grazing_strain: R,
     pub(crate) merged: bool,
     max_events: u64,
@@ -285,7 +295,7 @@ impl<R: Real> Tracer<R> {
             // At rest relative to the rod's motion at -v_b: a = v_b/2c, b = -v_b/2c.
             up_base: layers.iter().map(|l| vb / (two * l.wave_speed)).collect(),
             down_base: layers.iter().map(|l| -vb / (two * l.wave_speed)).collect(),
-            queue: EventQueue::new(lanes.len()),
+            queue: EventQueue::new(n),
             lanes,
             from_above,
             contact: ContactState::InContact { strain: R::zero() },
@@ -299,6 +309,7 @@ impl<R: Real> Tracer<R> {
             mass: of(rod.scaled_mass()),
             escape: EscapeBound::new(of(rod.scaled_compliance_moment()), of(rod.scaled_mass())),
             simultaneity,
+            simultaneity_scale: of(t_min),
             grazing_strain: of(config.grazing_tolerance) * vb / c0,
             merged,
             max_events: config.max_events,
@@ -481,18 +492,8 @@ impl<R: Real> Tracer<R> {
         if jump == R::zero() {
             return Ok(());
         }
-        let props = self.layers[layer];
-        if jump.abs() < props.drop_strain {
-            let d = self.drops.truncation;
-            self.drops.truncation = Truncation {
-                dropped_fronts: d.dropped_fronts + 1,
-                dropped_velocity: d.dropped_velocity
-                    + (jump.abs() * props.wave_speed / self.impact_speed).to_f64(),
-                ..d
-            };
-            let force = (props.modulus * jump.abs()).to_f64();
-            self.drops.dropped_force += force;
-            self.drops.dropped_force_time += force * t.to_f64();
+        if jump.abs() < self.layers[layer].drop_strain {
+            self.drop_front(layer, t, jump);
             return Ok(());
         }
         match dir {
@@ -504,48 +505,92 @@ impl<R: Real> Tracer<R> {
         let lane = &mut self.lanes[index];
         match lane.push(t, jump, id) {
             Pushed::New { was_empty } => {
-                let arrival = lane.arrival_of(t);
                 if self.record.fronts {
-                    let u = &self.units;
-                    self.recording.fronts.push(FrontRecord {
-                        id,
-                        layer,
-                        direction: dir,
-                        born: t.to_f64() * u.time,
-                        arrives: arrival.to_f64() * u.time,
-                        jump: jump.to_f64() * u.strain(),
-                        parents: parents.to_vec(),
-                    });
+                    let arrives = lane.arrival_of(t);
+                    self.record_front(id, (layer, dir), (t, arrives), jump, parents);
                 }
                 self.next_id += 1;
-                if was_empty && let Some(head) = lane.head_arrival() {
-                    self.queue
-                        .schedule(EventKey::Lane(index as u32), head, self.now)
-                        .map_err(past)?;
+                if was_empty {
+                    self.reschedule_layer(layer)?;
                 }
             }
             Pushed::Merged {
                 id,
                 moved_head,
                 beyond_simultaneity,
+                gap,
             } => {
+                if gap > R::zero() {
+                    self.note_combined(gap);
+                }
                 if beyond_simultaneity {
                     self.drops.truncation.merged_fronts += 1;
                 }
-                if moved_head && let Some(arrival) = lane.head_arrival() {
-                    self.queue
-                        .schedule(EventKey::Lane(index as u32), arrival, self.now)
-                        .map_err(past)?;
+                if moved_head {
+                    self.reschedule_layer(layer)?;
                 }
-                if self.record.fronts
-                    && let Some(rec) = self.recording.fronts.get_mut(id as usize)
-                {
-                    rec.jump += jump.to_f64() * self.units.strain();
-                    rec.parents.extend_from_slice(parents);
+                if self.record.fronts {
+                    self.record_merge(id, jump, parents);
                 }
             }
         }
         Ok(())
+    }
+
+    /// Counts a front too small to keep: what it carried goes into the
+    /// error estimate (see [`Tracer::dropped_error_bound`]). Rare, so kept
+    /// out of the event loop's hot path.
+    #[cold]
+    pub(crate) fn drop_front(&mut self, layer: usize, born: R, jump: R) {
+        let l = self.layers[layer];
+        let d = &mut self.drops;
+        d.truncation.dropped_fronts += 1;
+        d.truncation.dropped_velocity += (jump.abs() * l.wave_speed / self.impact_speed).to_f64();
+        let force = (l.modulus * jump.abs()).to_f64();
+        d.dropped_force += force;
+        d.dropped_force_time += force * born.to_f64();
+    }
+
+    /// Records a new front (only when fronts are recorded).
+    #[cold]
+    fn record_front(
+        &mut self,
+        id: u32,
+        (layer, direction): (usize, Direction),
+        (born, arrives): (R, R),
+        jump: R,
+        parents: &[u32],
+    ) {
+        let u = &self.units;
+        self.recording.fronts.push(FrontRecord {
+            id,
+            layer,
+            direction,
+            born: born.to_f64() * u.time,
+            arrives: arrives.to_f64() * u.time,
+            jump: jump.to_f64() * u.strain(),
+            parents: parents.to_vec(),
+        });
+    }
+
+    /// Adds a merged front's jump and parents to its record.
+    #[cold]
+    fn record_merge(&mut self, id: u32, jump: R, parents: &[u32]) {
+        if let Some(rec) = self.recording.fronts.get_mut(id as usize) {
+            rec.jump += jump.to_f64() * self.units.strain();
+            rec.parents.extend_from_slice(parents);
+        }
+    }
+
+    /// Counts a combination of two instants `gap > 0` apart if the gap is
+    /// more than rounding (a few ulps of the time and of the shortest
+    /// transit): a tie that rounding split is no use of the tolerance.
+    #[cold]
+    fn note_combined(&mut self, gap: R) {
+        let ulps = R::of(64.0 * f64::EPSILON);
+        if gap > ulps * (self.now.abs() + self.simultaneity_scale) {
+            self.decisions.within_tolerance += 1;
+        }
     }
 
     /// Takes the head of lane `index` if it arrives by `deadline`: its
@@ -553,9 +598,15 @@ impl<R: Real> Tracer<R> {
     fn take_head(&mut self, index: usize, deadline: R) -> Result<Option<(R, u32)>, WaveError> {
         let lane = &mut self.lanes[index];
         match lane.head_arrival() {
-            Some(t) if t <= deadline => {}
+            Some(t) if t <= deadline => {
+                if t > self.now {
+                    let gap = t - self.now;
+                    self.note_combined(gap);
+                }
+            }
             _ => return Ok(None),
         }
+        let lane = &mut self.lanes[index];
         let Some(front) = lane.pop() else {
             return Ok(None);
         };
@@ -566,14 +617,49 @@ impl<R: Real> Tracer<R> {
             self.folded_reflections += 1;
             self.down_base[lane.layer] -= front.jump;
         }
-        match lane.head_arrival() {
-            Some(next) => self
-                .queue
-                .schedule(EventKey::Lane(index as u32), next, self.now)
-                .map_err(past)?,
-            None => self.queue.cancel(EventKey::Lane(index as u32)),
+        // the layer's first arrival now: this lane's new head, or its
+        // sibling's (lanes of a layer are `2 i` and `2 i + 1`)
+        let (layer, next) = (lane.layer, lane.head_arrival());
+        let other = self.lanes[index ^ 1].head_arrival();
+        let first = match (next, other) {
+            (Some(a), Some(b)) => Some(if b < a { b } else { a }),
+            (a, b) => a.or(b),
+        };
+        let key = EventKey::Layer(layer as u32);
+        match first {
+            Some(at) => self.queue.schedule(key, at, self.now).map_err(past)?,
+            None => self.queue.cancel(key),
         }
         Ok(Some((jump, front.id)))
+    }
+
+    /// The lane of `layer` whose head arrives first (the up lane on a tie,
+    /// the order of the lanes' indices), and when.
+    #[inline]
+    fn first_lane(&self, layer: usize) -> Option<(usize, R)> {
+        let up = Lane::<R>::index(layer, Direction::Up);
+        let down = Lane::<R>::index(layer, Direction::Down);
+        match (
+            self.lanes[up].head_arrival(),
+            self.lanes[down].head_arrival(),
+        ) {
+            (Some(u), Some(d)) if d < u => Some((down, d)),
+            (Some(u), _) => Some((up, u)),
+            (None, d) => d.map(|d| (down, d)),
+        }
+    }
+
+    /// Puts `layer`'s first arrival in the queue (or takes the layer out).
+    #[inline]
+    pub(crate) fn reschedule_layer(&mut self, layer: usize) -> Result<(), WaveError> {
+        let key = EventKey::Layer(layer as u32);
+        match self.first_lane(layer) {
+            Some((_, t)) => self.queue.schedule(key, t, self.now).map_err(past),
+            None => {
+                self.queue.cancel(key);
+                Ok(())
+            }
+        }
     }
 
     /// Processes the next event. Arrivals at the same boundary within the
@@ -592,7 +678,7 @@ impl<R: Real> Tracer<R> {
                 time: self.time(),
             });
         }
-        let Some((key, t)) = self.queue.peek() else {
+        let Some((key, t)) = self.queue.next_event() else {
             // Nothing left can happen (every front dropped): the rod is free
             // for good only if it moves away; otherwise this is a limit case.
             return Err(WaveError::TimeLimit { time: self.time() });
@@ -605,14 +691,19 @@ impl<R: Real> Tracer<R> {
         self.events += 1;
         self.now = t;
         let kind = match key {
-            EventKey::Lane(index) => {
-                let layer = self.lanes[index as usize].layer;
+            EventKey::Layer(layer) => {
+                let layer = layer as usize;
                 if self.merged
                     && let Some(events) = self.leap(layer)?
                 {
                     StepKind::Leap { layer, events }
                 } else {
-                    let boundary = self.lanes[index as usize].target();
+                    // a layer is in the queue exactly while one of its lanes
+                    // holds a front (spawn, take_head and leaps keep it so)
+                    let (lane, _) = self
+                        .first_lane(layer)
+                        .expect("a scheduled layer holds a front");
+                    let boundary = self.lanes[lane].target();
                     self.boundary_event(boundary, t)?
                 }
             }
@@ -717,7 +808,12 @@ impl<R: Real> Tracer<R> {
             let c0 = self.layers[0].wave_speed;
             if let ContactState::InContact { strain } = self.contact {
                 let scale = self.impact_speed / c0;
-                self.note_decision((strain + R::of(2.0) * from_above) / scale);
+                let rigid = strain + R::of(2.0) * from_above;
+                self.note_decision(rigid / scale);
+                if rigid != R::zero() && rigid.abs() <= self.grazing_strain {
+                    self.decisions.within_tolerance += 1;
+                    self.decisions.grazed += 1;
+                }
             }
             let r = wall::reflect(self.contact, from_above, c0, t, self.grazing_strain);
             self.contact = r.state;

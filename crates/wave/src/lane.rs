@@ -75,8 +75,8 @@ pub struct Lane<R> {
 }
 
 /// What happened to a pushed front.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Pushed {
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Pushed<R> {
     /// It became the lane's newest front (`was_empty`: and its head).
     New { was_empty: bool },
     /// It was added into the newest front. `moved_head`: that front was the
@@ -86,6 +86,9 @@ pub enum Pushed {
         id: u32,
         moved_head: bool,
         beyond_simultaneity: bool,
+        /// How far apart the two births were, within the simultaneity
+        /// window (zero for an exact tie or a lattice merge).
+        gap: R,
     },
 }
 
@@ -148,7 +151,7 @@ impl<R: Real> Lane<R> {
 
     /// Adds a front born at `born` (not earlier than any front born before
     /// it, but lattice fronts may sit later).
-    pub fn push(&mut self, born: R, jump: R, id: u32) -> Pushed {
+    pub fn push(&mut self, born: R, jump: R, id: u32) -> Pushed<R> {
         match self.rule {
             MergeRule::Simultaneous { window } => {
                 let len = self.fronts.len();
@@ -160,6 +163,7 @@ impl<R: Real> Lane<R> {
                         id: last.id,
                         moved_head: false,
                         beyond_simultaneity: false,
+                        gap: born - last.born,
                     };
                 }
                 self.fronts.push_back(Front {
@@ -194,6 +198,7 @@ impl<R: Real> Lane<R> {
                         id,
                         moved_head: self.fronts.front().map(|f| f.born) != head_before,
                         beyond_simultaneity: true,
+                        gap: R::zero(),
                     },
                 }
             }

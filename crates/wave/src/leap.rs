@@ -22,7 +22,7 @@
 //! Leaps are made only in merged runs (lattice lanes), where the neighbours
 //! accept deposits in bulk; exact runs stay step by step, bit for bit.
 
-use crate::engine::{Tracer, past};
+use crate::engine::Tracer;
 use crate::error::WaveError;
 use crate::geometric::sums;
 use crate::lane::{Direction, Front, Lane, MergeRule};
@@ -526,17 +526,6 @@ impl<R: Real> Tracer<R> {
         k.max(from)
     }
 
-    /// Accounts for a front dropped at `born` in layer `i`.
-    fn drop_front(&mut self, i: usize, born: R, jump: R) {
-        let l = self.layers[i];
-        let d = &mut self.drops;
-        d.truncation.dropped_fronts += 1;
-        d.truncation.dropped_velocity += (jump.abs() * l.wave_speed / self.impact_speed).to_f64();
-        let force = (l.modulus * jump.abs()).to_f64();
-        d.dropped_force += force;
-        d.dropped_force_time += force * born.to_f64();
-    }
-
     /// The earliest time the wall could decide something: in contact, the
     /// first return making the wall strain grazing or tensile; in flight,
     /// the earliest the bottom could come down, from its lowest velocity.
@@ -746,7 +735,7 @@ impl<R: Real> Tracer<R> {
             let end = start + all[start..].iter().take_while(|d| d.0 == lane).count();
             let batch = all[start..end].iter().map(|d| (d.1, d.2)).collect();
             self.lanes[lane].place_all(batch);
-            self.reschedule(lane)?;
+            self.reschedule_layer(self.lanes[lane].layer)?;
             start = end;
         }
         all.clear();
@@ -774,7 +763,7 @@ impl<R: Real> Tracer<R> {
             lane.fronts.clear();
             lane.kept = 0;
             lane.fronts.extend(fronts);
-            self.reschedule(index)?;
+            self.reschedule_layer(i)?;
         }
         if self.lanes[ui].folded {
             // a folded top has no down lane: its fronts all went up
@@ -782,20 +771,6 @@ impl<R: Real> Tracer<R> {
             debug_assert!(moved.is_empty());
         }
         Ok(())
-    }
-
-    /// Puts lane `index`'s head in the queue (or takes it out).
-    fn reschedule(&mut self, index: usize) -> Result<(), WaveError> {
-        match self.lanes[index].head_arrival() {
-            Some(a) => self
-                .queue
-                .schedule(EventKey::Lane(index as u32), a, self.now)
-                .map_err(past),
-            None => {
-                self.queue.cancel(EventKey::Lane(index as u32));
-                Ok(())
-            }
-        }
     }
 }
 

@@ -410,7 +410,12 @@ fn double_precision_stays_within_its_a_priori_bound() {
         );
         assert_eq!(double.separations, dd.separations);
         assert!(d <= bound(&double), "{double:?}\n{dd:?}");
-        // the double-double run's own bound is far below double's
-        assert!(bound(&dd) < 1e-6 * bound(&double), "{dd:?}");
+        // the double-double run's own bound is far below double's, but for
+        // the last ulp of the double it is reported in (a 40-digit
+        // computation found the reported value that far off under a bound
+        // of 2e-30: `tests/integration/tracker.rs`)
+        let ulp = f64::EPSILON * dd.restitution.abs();
+        assert!(bound(&dd) >= ulp, "{dd:?}");
+        assert!(bound(&dd) - ulp < 1e-6 * bound(&double), "{dd:?}");
     }
 }
