@@ -56,6 +56,9 @@ const context = await chromium.launchPersistentContext(profile, {
   ],
 });
 const page = context.pages()[0] || (await context.newPage());
+// The page marks <body data-idle="true"> when no edit waits out its
+// debounce and no run is in flight; the spinner shows only after 150 ms, so
+// its absence says nothing about a run that has just begun.
 const pageErrors = [];
 page.on("pageerror", (e) => pageErrors.push(String(e)));
 
@@ -69,7 +72,7 @@ try {
   const box = { x0: 44, y0: 8, w: 460 - 44 - 8, h: 460 - 8 - 36 };
   await page.click("#map", { position: { x: box.x0 + 0.4 * box.w, y: box.y0 + (1 - 0.05) * box.h } });
   await page.waitForFunction(() => document.getElementById("point-title").textContent === "x = 0.4, α = 0.05");
-  await page.waitForFunction(() => document.querySelector("#diagram svg") !== null && document.getElementById("busy").hidden);
+  await page.waitForFunction(() => document.querySelector("#diagram svg") !== null && document.body.dataset.idle === "true");
   const cli = JSON.parse(execFileSync(impact, ["run", "--x", "0.4", "--alpha", "0.05", "--json"]).toString());
   const shown = await page.textContent("#n-e");
   check("e equals impact run --json to the printed digits", shown === cli.restitution.toFixed(12), `${shown} vs ${cli.restitution}`);
@@ -94,7 +97,7 @@ try {
   await page.click("#add-layer");
   await page.waitForFunction((before) => {
     const e = document.getElementById("n-e").textContent;
-    return e !== before && e !== "" && document.getElementById("busy").hidden;
+    return e !== before && e !== "" && document.body.dataset.idle === "true";
   }, shown);
   const scene = await page.evaluate(() => window.impactExplore.sceneJson().scene);
   const api = await (await fetch(`${url}api/run`, { method: "POST", body: JSON.stringify(scene) })).json();
@@ -113,16 +116,16 @@ try {
   check("the field is marked", invalid);
   await page.fill(modulus, "0.05");
   await page.waitForFunction(() => document.querySelector('.field-error[data-field="layers[1]"]').textContent === ""
-    && document.getElementById("busy").hidden);
+    && document.body.dataset.idle === "true");
   check("the page still works after the bad value", (await page.textContent("#n-e")) !== "");
   await page.click("#map", { position: { x: box.x0 + 0.3 * box.w, y: box.y0 + (1 - 0.3) * box.h } });
   await page.waitForFunction(() => document.getElementById("point-title").textContent === "x = 0.3, α = 0.3");
-  await page.waitForFunction(() => document.getElementById("busy").hidden && document.querySelector("#diagram svg") !== null);
+  await page.waitForFunction(() => document.body.dataset.idle === "true" && document.querySelector("#diagram svg") !== null);
   const cli2 = JSON.parse(execFileSync(impact, ["run", "--x", "0.3", "--alpha", "0.3", "--json"]).toString());
   check("and the map still picks points", (await page.textContent("#n-e")) === cli2.restitution.toFixed(12));
 
   // zoom and pan in time, the chain beside the exact picture
-  const idle = () => page.waitForFunction(() => document.getElementById("busy").hidden);
+  const idle = () => page.waitForFunction(() => document.body.dataset.idle === "true");
   await page.click("#zoom-in");
   await page.waitForFunction(() => document.getElementById("window-text").textContent.startsWith("t from"));
   await idle();
@@ -142,7 +145,7 @@ try {
   await page.selectOption('#layers tr[data-layer="2"] select[data-key="visc"]', "e");
   await page.fill('#layers tr[data-layer="2"] input[data-key="viscValue"]', "0.72");
   await page.waitForFunction(() => document.getElementById("n-engine").textContent === "chain", null, { timeout: 120000 });
-  await page.waitForFunction(() => document.getElementById("busy").hidden, null, { timeout: 120000 });
+  await page.waitForFunction(() => document.body.dataset.idle === "true", null, { timeout: 120000 });
   const viscous = await page.evaluate(() => window.impactExplore.sceneJson().scene);
   const viscousApi = await (await fetch(`${url}api/run`, { method: "POST", body: JSON.stringify(viscous) })).json();
   check("a viscous scene runs on the chain, as the API does", (await page.textContent("#n-e")) === viscousApi.restitution.toFixed(12),
@@ -161,7 +164,7 @@ try {
       return running;
     });
     if (!clicked) continue;
-    await page.waitForFunction(() => document.getElementById("busy").hidden, null, { timeout: 20000 });
+    await page.waitForFunction(() => document.body.dataset.idle === "true", null, { timeout: 20000 });
     cancelled = (await page.textContent("#run-error")) === "cancelled";
     break;
   }
@@ -172,7 +175,7 @@ try {
   await page.waitForFunction(() => document.getElementById("map").dataset.step === "0.005", null, { timeout: 60000 });
   await page.waitForFunction(() => document.getElementById("point-title").textContent === "x = 0.4, α = 0.05"
     && document.getElementById("command").value === "impact run --x 0.4 --alpha 0.05"
-    && document.getElementById("busy").hidden);
+    && document.body.dataset.idle === "true");
   await page.hover("#events tbody tr[data-id]:nth-child(6)");
   check("no script errors", pageErrors.length === 0, pageErrors.join("; "));
 

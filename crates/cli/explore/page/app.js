@@ -4,7 +4,7 @@
 import { $, canonicalLayers, fmt, live, loadUrl, numberOrNull, saveUrl, state } from "./state.js";
 import { drawMap, loadMaps, mapPoint } from "./map.js";
 import { addLayer, isViscous, onLayerEdit, renderLayers, sceneJson } from "./editor.js";
-import { busy, currentWindow, download, downloadPng, highlight, pointName, schedule, update } from "./point.js";
+import { cancelRun, currentWindow, download, downloadPng, highlight, pointName, schedule, update } from "./point.js";
 
 function syncInputs() {
   $("x").value = state.x;
@@ -85,13 +85,7 @@ function wire() {
   $("wall-contact").addEventListener("change", () => { state.wall = $("wall-contact").value; schedule(); });
   $("side-by-side").addEventListener("change", () => { state.sideBySide = $("side-by-side").checked; update(true); });
   $("chain-n").addEventListener("change", () => { state.chainN = Number($("chain-n").value) || 2000; if (state.sideBySide || isViscous()) update(true); });
-  $("cancel").addEventListener("click", () => {
-    if (live.inflight) live.inflight.abort();
-    live.inflight = null;
-    busy(false);
-    $("run-error").textContent = "cancelled";
-    $("run-error").hidden = false;
-  });
+  $("cancel").addEventListener("click", cancelRun);
   const zoom = (f) => {
     const [a, b] = currentWindow();
     const c = (a + b) / 2, half = ((b - a) / 2) * f;

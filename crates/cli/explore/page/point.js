@@ -4,10 +4,36 @@ import { $, fmt, live, round6, saveUrl, state } from "./state.js";
 import { drawMap } from "./map.js";
 import { isViscous, sceneJson } from "./editor.js";
 
+// The page is idle when no edit waits out its debounce and no run is in
+// flight: `<body data-idle="true">`. The spinner shows only after 150 ms, so
+// scripts (and the browser test) wait on this instead.
 let timer = null;
 export function schedule() {
   clearTimeout(timer);
-  timer = setTimeout(update, 120);
+  setIdle(false);
+  timer = setTimeout(() => {
+    timer = null;
+    update();
+  }, 120);
+}
+
+function setIdle(idle) {
+  document.body.dataset.idle = String(idle);
+}
+
+export function cancelRun() {
+  if (live.inflight) live.inflight.abort();
+  live.inflight = null;
+  busy(false);
+  $("run-error").textContent = "cancelled";
+  $("run-error").hidden = false;
+  if (timer === null) setIdle(true);
+}
+
+// The picture's downloads work only while a picture is shown.
+function setDiagram(d) {
+  live.lastDiagram = d;
+  $("dl-svg").disabled = $("dl-png").disabled = d === null;
 }
 
 export function clearErrors() {
@@ -114,6 +140,7 @@ export async function update(diagramOnly) {
   if (live.inflight) live.inflight.abort();
   const controller = new AbortController();
   live.inflight = controller;
+  setIdle(false);
   const viscous = isViscous();
   busy(true, viscous ? "running the chain (extrapolated to N → ∞)…" : "running…");
   try {
@@ -126,12 +153,12 @@ export async function update(diagramOnly) {
     }
     if (live.lastRun.engine === "rigid-bottom") {
       $("diagram").innerHTML = '<p class="sub">The rigid-bottom model draws no diagram: choose the wave or chain engine.</p>';
-      live.lastDiagram = null;
+      setDiagram(null);
       fillEvents(null);
     } else {
       busy(true, "drawing…");
       // no stale picture beside new numbers while (or if) none comes
-      live.lastDiagram = null;
+      setDiagram(null);
       const d = await answer(await diagramRequest(controller.signal, live.lastRun)).catch((e) => {
         if (!(e instanceof InputError)) throw e;
         const note = document.createElement("p");
@@ -142,7 +169,7 @@ export async function update(diagramOnly) {
         return null;
       });
       if (d) {
-        live.lastDiagram = d.body;
+        setDiagram(d.body);
         showDiagram(d.body);
       }
     }
@@ -154,6 +181,7 @@ export async function update(diagramOnly) {
     if (live.inflight === controller) {
       live.inflight = null;
       busy(false);
+      if (timer === null) setIdle(true);
     }
   }
 }
@@ -269,6 +297,7 @@ export function downloadPng() {
   const w = Number(svg.getAttribute("width")) || svg.viewBox.baseVal.width;
   const h = Number(svg.getAttribute("height")) || svg.viewBox.baseVal.height;
   const img = new Image();
+  img.onerror = () => showError("the diagram could not be drawn as a PNG: download the SVG");
   img.onload = () => {
     const canvas = document.createElement("canvas");
     canvas.width = 2 * w;
