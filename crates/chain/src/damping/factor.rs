@@ -3,6 +3,8 @@
 //! interleaved blocks, and the homogeneous solutions (`Tail`) that fix the
 //! blocks up exactly.
 
+use std::borrow::Cow;
+
 use super::GAMMA;
 use super::quad::{LANES, Quad};
 use super::tails::{LaneTails, Tail};
@@ -61,6 +63,42 @@ pub(crate) struct Factor {
     /// first stage's velocity of mass 0, `V1_0 = (A^-1 M v)_0`, which the
     /// wall impulse needs. It decays from mass 0 like the sweeps' tails.
     first_stage_0: Vec<f64>,
+}
+
+/// `P`'s factors for a run's two steady wall states, the wall dashpot off
+/// and fully on (the same twice unless the run starts at the wall).
+#[derive(Debug, Clone)]
+pub(crate) struct WallFactors {
+    pub(crate) free: Factor,
+    with_wall: Factor,
+    h: f64,
+    lane: usize,
+}
+
+impl WallFactors {
+    /// For masses `mass` and dashpot constants `c` (`c[0]` the wall's when
+    /// in full contact) over a step `h`, blocks of `lane` masses.
+    pub(crate) fn new(mass: &[f64], c: &[f64], h: f64, lane: usize) -> Self {
+        Self {
+            free: Factor::with_lane(mass, c, h, 0.0, lane),
+            with_wall: Factor::with_lane(mass, c, h, c[0], lane),
+            h,
+            lane,
+        }
+    }
+
+    /// The factor for a step whose wall dashpot acts as `wall`: a kept one
+    /// in steady states; when a contact begins or ends within the step
+    /// (`wall` a fraction of `c[0]`, rare) one factorised for the occasion.
+    pub(crate) fn for_wall(&self, wall: f64, mass: &[f64], c: &[f64]) -> Cow<'_, Factor> {
+        if wall == 0.0 {
+            Cow::Borrowed(&self.free)
+        } else if wall == c[0] {
+            Cow::Borrowed(&self.with_wall)
+        } else {
+            Cow::Owned(Factor::with_lane(mass, c, self.h, wall, self.lane))
+        }
+    }
 }
 
 /// The block length for `n` masses: 0 (one piece) below `LANES * MIN_LANE`.

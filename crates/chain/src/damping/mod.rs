@@ -52,7 +52,7 @@ mod factor;
 mod quad;
 mod tails;
 
-pub(crate) use factor::{Factor, lane_length};
+pub(crate) use factor::{Factor, WallFactors, lane_length};
 pub(crate) use quad::{LANES, Quad};
 
 /// `g = 1 - 1/sqrt(2)`, SDIRK2's diagonal coefficient.
@@ -159,13 +159,10 @@ pub struct Dashpots {
 /// on and off (the same factor twice unless it starts at mass 0).
 #[derive(Debug, Clone)]
 struct Segment {
-    with_wall: Factor,
-    free: Factor,
+    factors: WallFactors,
     /// Dashpot constants (element `j` below mass `j`).
     c: Vec<f64>,
     h: f64,
-    /// Block length of the factors' sweeps (0: one piece).
-    lane: usize,
     stencil: Stencil,
     /// The right-hand side, then the forward sweep's `L^-1 r`.
     rhs: Vec<f64>,
@@ -275,11 +272,9 @@ impl Segment {
         }
         let lane = lane_length(n);
         Self {
-            with_wall: Factor::with_lane(mass, c, h, c[0], lane),
-            free: Factor::with_lane(mass, c, h, 0.0, lane),
+            factors: WallFactors::new(mass, c, h, lane),
             c: c.to_vec(),
             h,
-            lane,
             stencil: Stencil { runs, edges },
             rhs: vec![0.0; n],
             lanes: vec![Quad::ZERO; lane],
@@ -289,16 +284,7 @@ impl Segment {
     /// [`Dashpots::flow`] on this segment's masses, `wall` 0 unless it
     /// starts at mass 0.
     fn flow(&mut self, mass: &[f64], v: &mut [f64], wall: f64) -> f64 {
-        let built;
-        let factor = if wall == 0.0 {
-            &self.free
-        } else if wall == self.c[0] {
-            &self.with_wall
-        } else {
-            // a contact begins or ends: rare, factorise for the occasion
-            built = Factor::with_lane(mass, &self.c, self.h, wall, self.lane);
-            &built
-        };
+        let factor = self.factors.for_wall(wall, mass, &self.c);
         let s = (1.0 - 2.0 * GAMMA) * self.h;
         let r = &mut self.rhs;
         (self.stencil).right_hand_side(mass, &self.c, wall, s, v, r);
@@ -411,10 +397,8 @@ mod tests {
                 l = 0;
             }
             let m = &mass[*start..*start + n];
-            segment.lane = l;
             segment.lanes = vec![Quad::ZERO; l];
-            segment.with_wall = Factor::with_lane(m, &segment.c, h, segment.c[0], l);
-            segment.free = Factor::with_lane(m, &segment.c, h, 0.0, l);
+            segment.factors = WallFactors::new(m, &segment.c, h, l);
         }
         d
     }

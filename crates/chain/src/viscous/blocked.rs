@@ -31,7 +31,7 @@
 //! mass below the first is read from the chain (or is the wall: its spring
 //! acts while `u_0 < 0`, which `k (max(u_0, 0) - u_0)` is).
 
-use crate::damping::{Factor, GAMMA, LANES, Quad};
+use crate::damping::{Factor, GAMMA, LANES, Quad, WallFactors};
 use impact_model::WallContact;
 
 /// A step's masses' constants: springs for Beeman's stencil, masses and
@@ -258,10 +258,8 @@ pub(crate) struct Blocked {
     /// contact begins or ends within a step.
     mass: Vec<f64>,
     c: Vec<f64>,
-    /// `P`'s factors with the wall dashpot on and off (the same unless the
-    /// segment starts at the wall).
-    with_wall: Factor,
-    free: Factor,
+    /// `P`'s factors with the wall dashpot on and off.
+    factors: WallFactors,
     /// `s = (1 - 2 g) dt`, the right-hand side's dashpot factor.
     damp: f64,
     dt: f64,
@@ -323,8 +321,7 @@ impl Blocked {
             start,
             len,
             coef,
-            with_wall: Factor::with_lane(&pad_mass, &pad_c, dt, pad_c[0], s),
-            free: Factor::with_lane(&pad_mass, &pad_c, dt, 0.0, s),
+            factors: WallFactors::new(&pad_mass, &pad_c, dt, s),
             mass: pad_mass,
             c: pad_c,
             damp,
@@ -411,16 +408,8 @@ impl Blocked {
         if first == 0 {
             self.coef[0].damp_below.0[0] = self.damp * wall;
         }
-        let built;
-        let factor = if wall == 0.0 {
-            &self.free
-        } else if wall == self.c[0] {
-            &self.with_wall
-        } else {
-            // a contact begins or ends: rare, factorise for the occasion
-            built = Factor::with_lane(&self.mass, &self.c, self.dt, wall, self.steps.len());
-            &built
-        };
+        let factor = self.factors.for_wall(wall, &self.mass, &self.c);
+        let factor = factor.as_ref();
         let steps = &mut self.steps;
         forward::<P>(steps, &self.coef, factor, below, true);
         factor.fix_forward(steps, |step| &mut step.x[1 - P]);
@@ -439,9 +428,11 @@ impl Blocked {
         // (`x[P]` still holds Beeman's velocities)
         self.coef[0].damp_below.0[0] = 0.0;
         steps[0].x[P].0[0] -= self.dt * spring_impulse / self.mass[0];
-        forward::<P>(steps, &self.coef, &self.free, below, false);
-        self.free.fix_forward(steps, |step| &mut step.x[1 - P]);
-        backward::<P, true>(steps, &self.free);
+        forward::<P>(steps, &self.coef, &self.factors.free, below, false);
+        self.factors
+            .free
+            .fix_forward(steps, |step| &mut step.x[1 - P]);
+        backward::<P, true>(steps, &self.factors.free);
         -spring_impulse
     }
 
