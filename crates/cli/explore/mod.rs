@@ -75,17 +75,39 @@ pub fn explore(a: ExploreArgs) -> anyhow::Result<()> {
             address.ip().to_string()
         };
         let url = format!("http://{host}:{}/", address.port());
+        // Ctrl-C is caught from before the URL is printed: whoever reads
+        // the URL may stop the server at once (a test does)
+        let stop = interrupted()?;
         println!("impact explore: {url}  (Ctrl-C stops the server)");
         if a.open {
             open_browser(&url);
         }
         axum::serve(listener, api::router(api::App::new(scene)))
             .with_graceful_shutdown(async {
-                let _ = tokio::signal::ctrl_c().await;
+                stop.await;
                 eprintln!("impact explore: stopping");
             })
             .await
             .context("the server failed")
+    })
+}
+
+/// Resolves at Ctrl-C (SIGINT). On Unix the handler is installed here, not
+/// when the future is first polled, so a signal sent as soon as the URL is
+/// out is not the default one that kills the process.
+#[cfg(unix)]
+fn interrupted() -> anyhow::Result<impl Future<Output = ()>> {
+    use tokio::signal::unix::{SignalKind, signal};
+    let mut sigint = signal(SignalKind::interrupt()).context("cannot catch Ctrl-C")?;
+    Ok(async move {
+        sigint.recv().await;
+    })
+}
+
+#[cfg(not(unix))]
+fn interrupted() -> anyhow::Result<impl Future<Output = ()>> {
+    Ok(async {
+        let _ = tokio::signal::ctrl_c().await;
     })
 }
 
