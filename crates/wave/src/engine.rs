@@ -384,7 +384,7 @@ impl<R: Real> Tracer<R> {
             .iter()
             .filter(|l| l.folded)
             .map(|l| {
-                l.fronts
+                l.fronts()
                     .iter()
                     .take_while(|f| f.born + l.transit <= self.now)
                     .count() as u64
@@ -414,7 +414,7 @@ impl<R: Real> Tracer<R> {
 
     /// Fronts alive now, over all lanes (the run's memory).
     pub fn live_fronts(&self) -> usize {
-        self.lanes.iter().map(|l| l.fronts.len()).sum()
+        self.lanes.iter().map(|l| l.fronts().len()).sum()
     }
 
     /// A first-order bound on how far dropped fronts moved `e`: each left a
@@ -481,6 +481,7 @@ impl<R: Real> Tracer<R> {
     }
 
     /// Adds a front born at `t` at the start of the lane of (`layer`, `dir`).
+    #[inline(always)]
     fn spawn(
         &mut self,
         layer: usize,
@@ -595,6 +596,7 @@ impl<R: Real> Tracer<R> {
 
     /// Takes the head of lane `index` if it arrives by `deadline`: its
     /// delivered jump and id.
+    #[inline(always)]
     fn take_head(&mut self, index: usize, deadline: R) -> Result<Option<(R, u32)>, WaveError> {
         let lane = &mut self.lanes[index];
         match lane.head_arrival() {
@@ -721,7 +723,7 @@ impl<R: Real> Tracer<R> {
                     // rescheduled at t), else the flight goes on. Either
                     // order gives the same state; this one gives no
                     // zero-length contact.
-                    self.boundary_event(0, t)?
+                    self.landing_arrival()?
                 } else {
                     self.reconnect(t)?;
                     StepKind::Reconnected
@@ -779,7 +781,15 @@ impl<R: Real> Tracer<R> {
         self.decisions.smallest_margin = self.decisions.smallest_margin.min(m);
     }
 
+    /// A front reaching the free bottom as it lands: the wall's boundary
+    /// event, out of line (rare; the event loop inlines the common one).
+    #[inline(never)]
+    fn landing_arrival(&mut self) -> Result<StepKind, WaveError> {
+        self.boundary_event(0, self.now)
+    }
+
     /// All fronts reaching boundary `b` by `t + simultaneity`, as one event.
+    #[inline(always)]
     fn boundary_event(&mut self, b: usize, t: R) -> Result<StepKind, WaveError> {
         let deadline = t + self.simultaneity;
         let n = self.layers.len();

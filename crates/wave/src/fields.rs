@@ -99,7 +99,7 @@ impl<R: Real> Tracer<R> {
         if up.folded {
             // fronts past the top are reflections going down
             let mut reflected: Vec<(R, R)> = Vec::new();
-            for f in up.fronts.iter() {
+            for f in up.fronts().iter() {
                 let age = now - f.born;
                 if age >= up.transit {
                     reflected.push((c * (age - up.transit), -f.jump));
@@ -116,11 +116,11 @@ impl<R: Real> Tracer<R> {
             // from the nearest to the top outward
             b.steps = reflected;
         } else {
-            for f in up.fronts.iter().rev() {
+            for f in up.fronts().iter().rev() {
                 a.steps.push((c * (now - f.born), f.jump));
             }
             let down = &self.lanes[Lane::<R>::index(i, Direction::Down)];
-            for f in down.fronts.iter().rev() {
+            for f in down.fronts().iter().rev() {
                 b.steps.push((c * (now - f.born), f.jump));
             }
         }

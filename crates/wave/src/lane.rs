@@ -66,10 +66,16 @@ pub struct Lane<R> {
     pub direction: Direction,
     pub transit: R,
     /// True for the top layer's folded lane: fronts go up, reflect at the
-    /// free top and come back down to the layer's bottom, negated.
+    /// free top and come back down to the layer's bottom, negated. Set
+    /// while the lane is empty (arrivals are computed as fronts enter).
     pub folded: bool,
     pub rule: MergeRule<R>,
-    pub fronts: VecDeque<Front<R>>,
+    /// Private: every change goes through the methods that keep `head_at`.
+    fronts: VecDeque<Front<R>>,
+    /// When the head front arrives, kept beside the fronts: the event loop
+    /// asks for it several times an event, the lane changes its head about
+    /// once.
+    head_at: Option<R>,
     /// Kept (not deposited) fronts in a lattice lane.
     pub kept: usize,
 }
@@ -101,8 +107,27 @@ impl<R: Real> Lane<R> {
             folded: false,
             rule,
             fronts: VecDeque::new(),
+            head_at: None,
             kept: 0,
         }
+    }
+
+    /// The fronts, oldest first.
+    pub fn fronts(&self) -> &VecDeque<Front<R>> {
+        &self.fronts
+    }
+
+    /// Replaces the fronts (a leap's rebuilt lanes): none kept.
+    pub fn set_fronts(&mut self, fronts: Vec<Front<R>>) {
+        self.fronts.clear();
+        self.kept = 0;
+        self.fronts.extend(fronts);
+        self.refresh_head();
+    }
+
+    fn refresh_head(&mut self) {
+        self.head_at = self.fronts.front().map(|f| f.born);
+        self.head_at = self.head_at.map(|born| self.arrival_of(born));
     }
 
     /// Index of the lane of `layer` moving in `direction`.
@@ -130,7 +155,11 @@ impl<R: Real> Lane<R> {
     /// Arrival time of the head front.
     #[inline]
     pub fn head_arrival(&self) -> Option<R> {
-        self.fronts.front().map(|f| self.arrival_of(f.born))
+        debug_assert_eq!(
+            self.head_at,
+            self.fronts.front().map(|f| self.arrival_of(f.born))
+        );
+        self.head_at
     }
 
     /// The jump a front delivers when it arrives (a folded lane's fronts
@@ -146,11 +175,13 @@ impl<R: Real> Lane<R> {
         if f.kept {
             self.kept -= 1;
         }
+        self.refresh_head();
         Some(f)
     }
 
     /// Adds a front born at `born` (not earlier than any front born before
     /// it, but lattice fronts may sit later).
+    #[inline]
     pub fn push(&mut self, born: R, jump: R, id: u32) -> Pushed<R> {
         match self.rule {
             MergeRule::Simultaneous { window } => {
@@ -172,6 +203,9 @@ impl<R: Real> Lane<R> {
                     id,
                     kept: false,
                 });
+                if len == 0 {
+                    self.head_at = Some(self.arrival_of(born));
+                }
                 Pushed::New {
                     was_empty: len == 0,
                 }
@@ -180,28 +214,42 @@ impl<R: Real> Lane<R> {
                 spacing,
                 keep_above,
                 keep_at_most,
-            } => {
-                let head_before = self.fronts.front().map(|f| f.born);
-                let was_empty = self.fronts.is_empty();
-                let inserted = if jump.abs() >= keep_above && self.kept < keep_at_most {
-                    self.kept += 1;
-                    self.add_at(born, jump, id, true)
-                } else {
-                    self.deposit(born, jump, id, spacing)
-                };
-                match (was_empty, inserted) {
-                    (true, _) => Pushed::New { was_empty: true },
-                    (false, true) if self.fronts.front().map(|f| f.born) == head_before => {
-                        Pushed::New { was_empty: false }
-                    }
-                    _ => Pushed::Merged {
-                        id,
-                        moved_head: self.fronts.front().map(|f| f.born) != head_before,
-                        beyond_simultaneity: true,
-                        gap: R::zero(),
-                    },
-                }
+            } => self.push_on_lattice(born, jump, id, spacing, keep_above, keep_at_most),
+        }
+    }
+
+    /// [`Lane::push`] under [`MergeRule::Lattice`]: merged runs only, kept
+    /// out of the exact event loop's inlined path.
+    #[inline(never)]
+    fn push_on_lattice(
+        &mut self,
+        born: R,
+        jump: R,
+        id: u32,
+        spacing: R,
+        keep_above: R,
+        keep_at_most: usize,
+    ) -> Pushed<R> {
+        let head_before = self.fronts.front().map(|f| f.born);
+        let was_empty = self.fronts.is_empty();
+        let inserted = if jump.abs() >= keep_above && self.kept < keep_at_most {
+            self.kept += 1;
+            self.add_at(born, jump, id, true)
+        } else {
+            self.deposit(born, jump, id, spacing)
+        };
+        self.refresh_head();
+        match (was_empty, inserted) {
+            (true, _) => Pushed::New { was_empty: true },
+            (false, true) if self.fronts.front().map(|f| f.born) == head_before => {
+                Pushed::New { was_empty: false }
             }
+            _ => Pushed::Merged {
+                id,
+                moved_head: self.fronts.front().map(|f| f.born) != head_before,
+                beyond_simultaneity: true,
+                gap: R::zero(),
+            },
         }
     }
 
@@ -260,6 +308,7 @@ impl<R: Real> Lane<R> {
             deposit(&mut merged, at, d);
         }
         self.fronts = merged;
+        self.refresh_head();
     }
 
     /// Adds `d` to the lattice front born at `at`, or inserts a front there

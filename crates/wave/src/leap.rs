@@ -454,7 +454,7 @@ impl<R: Real> Tracer<R> {
         let up = &self.lanes[Lane::<R>::index(i, Direction::Up)];
         if up.folded {
             return up
-                .fronts
+                .fronts()
                 .iter()
                 .map(|f| Phase {
                     tau: up.arrival_of(f.born),
@@ -464,14 +464,14 @@ impl<R: Real> Tracer<R> {
                 .collect();
         }
         let down = &self.lanes[Lane::<R>::index(i, Direction::Down)];
-        down.fronts
+        down.fronts()
             .iter()
             .map(|f| Phase {
                 tau: f.born + ti,
                 amp: f.jump,
                 top: None,
             })
-            .chain(up.fronts.iter().map(|f| {
+            .chain(up.fronts().iter().map(|f| {
                 let u = f.born + ti;
                 Phase {
                     tau: u + ti,
@@ -759,16 +759,12 @@ impl<R: Real> Tracer<R> {
         let ui = Lane::<R>::index(i, Direction::Up);
         let di = Lane::<R>::index(i, Direction::Down);
         for (index, fronts) in [(ui, up), (di, down)] {
-            let lane = &mut self.lanes[index];
-            lane.fronts.clear();
-            lane.kept = 0;
-            lane.fronts.extend(fronts);
+            self.lanes[index].set_fronts(fronts);
             self.reschedule_layer(i)?;
         }
         if self.lanes[ui].folded {
             // a folded top has no down lane: its fronts all went up
-            let moved: Vec<Front<R>> = self.lanes[di].fronts.drain(..).collect();
-            debug_assert!(moved.is_empty());
+            debug_assert!(self.lanes[di].fronts().is_empty());
         }
         Ok(())
     }
