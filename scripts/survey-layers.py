@@ -1,0 +1,107 @@
+#!/usr/bin/env python3
+"""How long the exact engine takes on random layered rods: the measure of
+issue 10's goal (every rod of 1 to 8 layers with transit-time ratios up to
+10^6 finishes by default in under 1 s).
+
+Draws seeded random rods (2 to 8 layers; lengths uniform in [0.2, 1.2],
+densities log-uniform in [0.1, 10], wave speeds log-uniform over SPEEDS
+decades, redrawn until the transit-time ratio is at most 10^SPEEDS), runs
+`impact run SCENE --json` on each with the default settings, one at a time,
+and prints one line per rod (layers, ratio, seconds, events, e, error bound)
+and a summary: median, 90th percentile and largest time, how many took
+over 1 s, and how many did not finish within --timeout.
+
+    python3 scripts/survey-layers.py                 # 40 rods, seed 7
+    python3 scripts/survey-layers.py --rods 100 --seed 1 --timeout 120
+    IMPACT=path/to/impact python3 scripts/survey-layers.py
+
+Not run by CI (minutes, and timings). Needs only Python 3 and the binary
+(cargo builds it when target/release/impact is missing).
+"""
+
+import argparse
+import json
+import math
+import os
+import random
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def draw(rng, speeds):
+    """One rod as a scene: 2 to 8 layers, transit ratio <= 10^speeds."""
+    n = rng.randint(2, 8)
+    while True:
+        layers = []
+        for _ in range(n):
+            length = rng.uniform(0.2, 1.2)
+            density = 10 ** rng.uniform(-1, 1)
+            speed = 10 ** rng.uniform(0, speeds)
+            layers.append({"length": length, "modulus": density * speed * speed, "density": density})
+        transits = [l["length"] / math.sqrt(l["modulus"] / l["density"]) for l in layers]
+        if max(transits) / min(transits) <= 10**speeds:
+            return {"impact_speed": 1.0, "layers": layers}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--rods", type=int, default=40, help="rods to draw (default 40)")
+    parser.add_argument("--seed", type=int, default=7, help="random seed (default 7)")
+    parser.add_argument("--speeds", type=float, default=6.0,
+                        help="decades of wave speed, and the largest transit ratio's (default 6)")
+    parser.add_argument("--timeout", type=float, default=60.0, help="seconds per rod (default 60)")
+    args = parser.parse_args()
+    if args.rods < 1 or args.timeout <= 0 or not 0 < args.speeds <= 12:
+        print("error: --rods >= 1, --timeout > 0, --speeds in (0, 12]", file=sys.stderr)
+        return 2
+
+    impact = os.environ.get("IMPACT") or str(ROOT / "target/release/impact")
+    if not os.access(impact, os.X_OK):
+        print("== building impact (cargo build --release)", flush=True)
+        subprocess.run(["cargo", "build", "--release", "--locked", "--quiet"], cwd=ROOT, check=True)
+
+    rng = random.Random(args.seed)
+    times, unfinished = [], 0
+    print(f"rod  layers  ratio      seconds       events  e             bound")
+    with tempfile.TemporaryDirectory(prefix="impact-survey-") as work:
+        for k in range(args.rods):
+            scene = draw(rng, args.speeds)
+            path = Path(work) / f"rod{k:03d}.json"
+            path.write_text(json.dumps(scene))
+            transits = [l["length"] / math.sqrt(l["modulus"] / l["density"]) for l in scene["layers"]]
+            ratio = max(transits) / min(transits)
+            start = time.perf_counter()
+            try:
+                run = subprocess.run([impact, "run", str(path), "--json"], capture_output=True,
+                                     text=True, timeout=args.timeout)
+            except subprocess.TimeoutExpired:
+                unfinished += 1
+                print(f"{k:3d}  {len(transits):6d}  {ratio:9.1e}  over {args.timeout:.0f} s (stopped)", flush=True)
+                continue
+            seconds = time.perf_counter() - start
+            times.append(seconds)
+            if run.returncode != 0:
+                print(f"{k:3d}  {len(transits):6d}  {ratio:9.1e}  {seconds:7.2f}  exit {run.returncode}: "
+                      f"{run.stderr.strip().splitlines()[-1] if run.stderr.strip() else ''}", flush=True)
+                continue
+            out = json.loads(run.stdout)
+            print(f"{k:3d}  {len(transits):6d}  {ratio:9.1e}  {seconds:7.2f}  {out['events']:11d}  "
+                  f"{out['restitution']:.10f}  {out['error_bound']:.1e}", flush=True)
+    times.sort()
+    over = sum(t > 1.0 for t in times)
+    p90 = times[min(len(times) - 1, int(0.9 * len(times)))] if times else float("nan")
+    print(f"{args.rods} rods (seed {args.seed}, ratios up to 1e{args.speeds:g}): "
+          f"median {statistics.median(times) if times else float('nan'):.2f} s, "
+          f"90th percentile {p90:.2f} s, largest finished {max(times) if times else float('nan'):.2f} s; "
+          f"{over} over 1 s, {unfinished} not finished within {args.timeout:g} s")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
