@@ -96,8 +96,8 @@ def main():
     times.sort()
     over = sum(t > 1.0 for t in times)
     p90 = times[min(len(times) - 1, int(0.9 * len(times)))] if times else float("nan")
-    print(f"{args.rods} rods (seed {args.seed}, ratios up to 1e{args.speeds:g}): "
-          f"median {statistics.median(times) if times else float('nan'):.2f} s, "
+    print(f"{args.rods} rods (seed {args.seed}, ratios up to 1e{args.speeds:g}); of the {len(times)} "
+          f"that finished: median {statistics.median(times) if times else float('nan'):.2f} s, "
           f"90th percentile {p90:.2f} s, largest finished {max(times) if times else float('nan'):.2f} s; "
           f"{over} over 1 s, {unfinished} not finished within {args.timeout:g} s")
     return 0
