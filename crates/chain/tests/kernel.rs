@@ -19,59 +19,22 @@ struct Beeman {
 
 fn beeman(rod: &impact_model::Rod, masses: usize, steps: u64) -> Beeman {
     let layout = ChainLayout::new(rod, masses).unwrap();
-    let (k, m) = (&layout.stiffness, &layout.mass);
-    let n = layout.len();
-    let dt = layout.paper_time_step();
     let v0 = rod.impact_speed();
-    let acc = |u: &[f64], j: usize| {
-        let below = if j == 0 {
-            k[0] * u[0].min(0.0)
-        } else {
-            k[j] * (u[j] - u[j - 1])
-        };
-        let above = if j + 1 < n {
-            k[j + 1] * (u[j + 1] - u[j])
-        } else {
-            0.0
-        };
-        (above - below) / m[j]
-    };
-    let (mut u, mut v) = (vec![0.0; n], vec![-v0; n]);
-    let (mut a, mut a_prev) = (vec![0.0; n], vec![0.0; n]);
-    let (mut impulse, mut force, mut t) = (0.0, 0.0, 0.0);
-    let mut contacts: Vec<(f64, f64)> = Vec::new();
-    let mut start = Some(0.0);
+    let mut chain = PlainBeeman::new(&layout, v0);
+    let (mut impulse, mut force) = (0.0, 0.0);
     for _ in 0..steps {
-        let u0_old = u[0];
-        for j in 0..n {
-            u[j] += dt * v[j] + dt * dt * (4.0 * a[j] - a_prev[j]) / 6.0;
-        }
-        let new: Vec<f64> = (0..n).map(|j| acc(&u, j)).collect();
-        for j in 0..n {
-            v[j] += dt * (2.0 * new[j] + 5.0 * a[j] - a_prev[j]) / 6.0;
-        }
-        a_prev.copy_from_slice(&a);
-        a.copy_from_slice(&new);
-        let f = -k[0] * u[0].min(0.0);
-        impulse += 0.5 * dt * (force + f);
+        let u0_old = chain.springs();
+        let f = chain.wall_force();
+        impulse += 0.5 * chain.dt * (force + f);
         force = f;
-        t += dt;
-        let crossing = t - dt + dt * (u0_old / (u0_old - u[0])).clamp(0.0, 1.0);
-        match (start, u[0] < 0.0) {
-            (Some(s), false) => {
-                contacts.push((s, crossing));
-                start = None;
-            }
-            (None, true) => start = Some(crossing),
-            _ => {}
-        }
+        chain.end_step(u0_old);
     }
-    let total: f64 = m.iter().sum();
+    let total: f64 = chain.m.iter().sum();
     Beeman {
-        u,
-        v,
+        u: chain.u,
+        v: chain.v,
         restitution: (-v0 + impulse / total) / v0,
-        contacts,
+        contacts: chain.contacts,
     }
 }
 

@@ -169,77 +169,44 @@ fn sdirk2(m: &[f64], c: &[f64], wall: f64, h: f64, v: &mut [f64]) -> f64 {
 /// The plain chain of `masses` masses for `steps` steps.
 fn plain(rod: &Rod, masses: usize, steps: u64) -> Plain {
     let layout = ChainLayout::new(rod, masses).unwrap();
-    let (k, m, c) = (&layout.stiffness, &layout.mass, &layout.viscosity);
-    let n = layout.len();
-    let dt = layout.paper_time_step();
+    let c = &layout.viscosity;
     let v0 = rod.impact_speed();
     let law = rod.wall_contact();
-    let acc = |u: &[f64], j: usize| {
-        let below = if j == 0 {
-            k[0] * u[0].min(0.0)
-        } else {
-            k[j] * (u[j] - u[j - 1])
-        };
-        let above = if j + 1 < n {
-            k[j + 1] * (u[j + 1] - u[j])
-        } else {
-            0.0
-        };
-        (above - below) / m[j]
-    };
-    let (mut u, mut v) = (vec![0.0; n], vec![-v0; n]);
-    let (mut a, mut a_prev) = (vec![0.0; n], vec![0.0; n]);
-    let (mut impulse, mut force, mut t) = (0.0, 0.0, 0.0);
-    let mut contacts: Vec<(f64, f64)> = Vec::new();
-    let mut start = Some(0.0);
+    let mut chain = PlainBeeman::new(&layout, v0);
+    let dt = chain.dt;
+    let (mut impulse, mut force) = (0.0, 0.0);
     for _ in 0..steps {
-        let u0_old = u[0];
-        for j in 0..n {
-            u[j] += dt * v[j] + dt * dt * (4.0 * a[j] - a_prev[j]) / 6.0;
-        }
-        let new: Vec<f64> = (0..n).map(|j| acc(&u, j)).collect();
-        for j in 0..n {
-            v[j] += dt * (2.0 * new[j] + 5.0 * a[j] - a_prev[j]) / 6.0;
-        }
-        a_prev.copy_from_slice(&a);
-        a.copy_from_slice(&new);
-        let f = -k[0] * u[0].min(0.0);
+        let u0_old = chain.springs();
+        let f = chain.wall_force();
         let spring = 0.5 * dt * (force + f);
+        let u0 = chain.u[0];
         // the wall dashpot acts for the compressed part of the step
-        let compressed = match (u0_old < 0.0, u[0] < 0.0) {
+        let compressed = match (u0_old < 0.0, u0 < 0.0) {
             (true, true) => 1.0,
             (false, false) => 0.0,
-            (true, false) => u0_old / (u0_old - u[0]),
-            (false, true) => u[0] / (u[0] - u0_old),
+            (true, false) => u0_old / (u0_old - u0),
+            (false, true) => u0 / (u0 - u0_old),
         };
+        let (m, v) = (&chain.m, &mut chain.v);
         let before = v.clone();
-        let mut dashpot = sdirk2(m, c, compressed * c[0], dt, &mut v);
+        let mut dashpot = sdirk2(m, c, compressed * c[0], dt, v);
         if law == WallContact::Unilateral && dashpot + spring < 0.0 {
             // the wall would pull: it gives no impulse at all
             v.copy_from_slice(&before);
             v[0] -= spring / m[0];
-            sdirk2(m, c, 0.0, dt, &mut v);
+            sdirk2(m, c, 0.0, dt, v);
             dashpot = -spring;
         }
         impulse += spring + dashpot;
         force = f;
-        t += dt;
-        let crossing = t - dt + dt * (u0_old / (u0_old - u[0])).clamp(0.0, 1.0);
-        match (start, u[0] < 0.0) {
-            (Some(s), false) => {
-                contacts.push((s, crossing));
-                start = None;
-            }
-            (None, true) => start = Some(crossing),
-            _ => {}
-        }
+        chain.end_step(u0_old);
     }
-    let total: f64 = m.iter().sum();
+    let total: f64 = chain.m.iter().sum();
     Plain {
-        u,
-        v,
+        u: chain.u,
+        v: chain.v,
         restitution: (-v0 + impulse / total) / v0,
-        contacts,
+        contacts: chain.contacts,
     }
 }
 

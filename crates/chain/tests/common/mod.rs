@@ -73,3 +73,90 @@ pub fn elastic_stack(speed: f64, layers: &[(f64, f64, f64)]) -> Rod {
     .validate()
     .unwrap()
 }
+
+/// Beeman's chain written out plainly (six arrays, the one-sided wall
+/// spring, contacts timed by linear interpolation of `u_0`): the oracle of
+/// the kernels (`tests/kernel.rs`, `tests/viscous_kernel.rs`). Dashpots,
+/// if any, are the caller's, between `springs` and `end_step`.
+pub struct PlainBeeman {
+    pub k: Vec<f64>,
+    pub m: Vec<f64>,
+    pub u: Vec<f64>,
+    pub v: Vec<f64>,
+    a: Vec<f64>,
+    a_prev: Vec<f64>,
+    pub dt: f64,
+    pub t: f64,
+    pub contacts: Vec<(f64, f64)>,
+    start: Option<f64>,
+}
+
+impl PlainBeeman {
+    pub fn new(layout: &impact_chain::ChainLayout, impact_speed: f64) -> Self {
+        let n = layout.len();
+        Self {
+            k: layout.stiffness.clone(),
+            m: layout.mass.clone(),
+            u: vec![0.0; n],
+            v: vec![-impact_speed; n],
+            a: vec![0.0; n],
+            a_prev: vec![0.0; n],
+            dt: layout.paper_time_step(),
+            t: 0.0,
+            contacts: Vec::new(),
+            start: Some(0.0),
+        }
+    }
+
+    /// The wall spring's force on mass 0 (upward while compressed).
+    pub fn wall_force(&self) -> f64 {
+        -self.k[0] * self.u[0].min(0.0)
+    }
+
+    /// One Beeman step of the springs; returns `u_0` before it.
+    pub fn springs(&mut self) -> f64 {
+        let (k, m, n, dt) = (&self.k, &self.m, self.u.len(), self.dt);
+        let acc = |u: &[f64], j: usize| {
+            let below = if j == 0 {
+                k[0] * u[0].min(0.0)
+            } else {
+                k[j] * (u[j] - u[j - 1])
+            };
+            let above = if j + 1 < n {
+                k[j + 1] * (u[j + 1] - u[j])
+            } else {
+                0.0
+            };
+            (above - below) / m[j]
+        };
+        let u0_old = self.u[0];
+        for j in 0..n {
+            self.u[j] += dt * self.v[j] + dt * dt * (4.0 * self.a[j] - self.a_prev[j]) / 6.0;
+        }
+        let new: Vec<f64> = (0..n).map(|j| acc(&self.u, j)).collect();
+        for (((v, &a_new), &a), &a_prev) in
+            self.v.iter_mut().zip(&new).zip(&self.a).zip(&self.a_prev)
+        {
+            *v += dt * (2.0 * a_new + 5.0 * a - a_prev) / 6.0;
+        }
+        self.a_prev.copy_from_slice(&self.a);
+        self.a.copy_from_slice(&new);
+        u0_old
+    }
+
+    /// Ends the step begun at `u_0 = u0_old`: the clock, and the contacts
+    /// (the wall element compressed while `u_0 < 0`).
+    pub fn end_step(&mut self, u0_old: f64) {
+        let dt = self.dt;
+        self.t += dt;
+        let crossing = self.t - dt + dt * (u0_old / (u0_old - self.u[0])).clamp(0.0, 1.0);
+        match (self.start, self.u[0] < 0.0) {
+            (Some(s), false) => {
+                self.contacts.push((s, crossing));
+                self.start = None;
+            }
+            (None, true) => self.start = Some(crossing),
+            _ => {}
+        }
+    }
+}
