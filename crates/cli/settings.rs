@@ -76,6 +76,7 @@ impl EngineArgs {
                     stop: horizon.map_or(ChainStop::Escape, |factor| ChainStop::Horizon { factor }),
                     max_steps: c.max_steps,
                     record: chain_record,
+                    viscous_kernel: c.viscous_kernel.into(),
                 })
             }
         };

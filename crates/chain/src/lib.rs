@@ -17,12 +17,13 @@ mod config;
 mod damping;
 mod engine;
 mod error;
+mod implicit;
 mod layout;
 mod verlet;
 mod viscous;
 pub use verlet::VerletChain;
 
-pub use config::{ChainConfig, ChainRecord, ChainStop};
+pub use config::{ChainConfig, ChainRecord, ChainStop, ViscousKernel};
 pub use engine::{ChainEngine, ChainRecording, RasterFrame};
 pub use error::ChainError;
 pub use layout::ChainLayout;

@@ -155,6 +155,31 @@ impl Factor {
                 }
             })
             .collect();
+        let mut f = Self::from_bands(&p0, &p1, &p2, lane);
+        // A^-1 e_0 = P^-1 A M^-1 e_0, and A^-1 is symmetric
+        let mut w = vec![0.0; n];
+        w[0] = a[0] / mass[0];
+        if n > 1 {
+            w[1] = b[0] / mass[0];
+        }
+        f.solve(&mut w);
+        let w: Vec<f64> = w.iter().zip(mass).map(|(w, m)| w * m).collect();
+        let largest = w.iter().fold(0.0f64, |x, w| x.max(w.abs()));
+        let keep = w
+            .iter()
+            .rposition(|w| w.abs() > NEGLIGIBLE * largest)
+            .map_or(0, |i| i + 1);
+        f.first_stage_0 = w[..keep].to_vec();
+        f
+    }
+
+    /// The `L D L^T` factor of the symmetric pentadiagonal matrix of
+    /// diagonal `p0` and off-diagonals `p1` (`p1[i]` at `(i, i + 1)`) and
+    /// `p2` (`p2[i]` at `(i, i + 2)`), blocks of `lane` masses as in
+    /// [`Factor::with_lane`]. A tridiagonal matrix is one with `p2 = 0`
+    /// (the implicit chain's, `crate::implicit`).
+    pub(crate) fn from_bands(p0: &[f64], p1: &[f64], p2: &[f64], lane: usize) -> Self {
+        let n = p0.len();
         let (mut l1, mut l2, mut d) = (vec![0.0; n + 2], vec![0.0; n + 2], vec![0.0; n]);
         for i in 0..n {
             if i >= 2 {
@@ -204,20 +229,6 @@ impl Factor {
             f.up = (0..LANES - 1).map(|k| f.up_tail(k)).collect();
             f.lane_tails = LaneTails::new(&f.down, &f.up);
         }
-        // A^-1 e_0 = P^-1 A M^-1 e_0, and A^-1 is symmetric
-        let mut w = vec![0.0; n];
-        w[0] = a[0] / mass[0];
-        if n > 1 {
-            w[1] = b[0] / mass[0];
-        }
-        f.solve(&mut w);
-        let w: Vec<f64> = w.iter().zip(mass).map(|(w, m)| w * m).collect();
-        let largest = w.iter().fold(0.0f64, |x, w| x.max(w.abs()));
-        let keep = w
-            .iter()
-            .rposition(|w| w.abs() > NEGLIGIBLE * largest)
-            .map_or(0, |i| i + 1);
-        f.first_stage_0 = w[..keep].to_vec();
         f
     }
 
@@ -294,7 +305,7 @@ impl Factor {
 
     /// Solves `P x = r` in place, one mass at a time (set-up, and the
     /// reference the blocked sweeps are tested against).
-    pub(super) fn solve(&self, x: &mut [f64]) {
+    pub(crate) fn solve(&self, x: &mut [f64]) {
         let n = x.len();
         let (mut y1, mut y2) = (0.0, 0.0);
         for ((x, l1), l2) in x.iter_mut().zip(&self.l1).zip(&self.l2) {
@@ -326,7 +337,7 @@ impl Factor {
     /// these sweeps in its own passes, its state in the lanes
     /// (`crate::viscous::blocked`); this is their reference in the chain's
     /// arrays, for any segment and any block length.
-    pub(super) fn solve_into(&self, r: &mut [f64], t: &mut [Quad], x: &mut [f64]) {
+    pub(crate) fn solve_into(&self, r: &mut [f64], t: &mut [Quad], x: &mut [f64]) {
         if self.lane == 0 {
             x.copy_from_slice(r);
             self.solve(x);

@@ -1,0 +1,249 @@
+//! The over-damped wall's kernel: SDIRK2 on springs and dashpots together.
+//!
+//! Why a second viscous kernel. The split kernel (`crate::viscous`: a
+//! Beeman step of the springs, then an SDIRK2 step of the dashpots) is
+//! second order while the step resolves how fast a dashpot stops a mass.
+//! Under the paper's wall law a viscous bottom's wall dashpot can stop
+//! mass 0 within a fraction of a step (`c_0 dt / m_0 = 12.6` for a
+//! homogeneous rod at `tau c / L = 1`, `N = 200`). The bottom then creeps
+//! at the velocity where spring and dashpot forces balance, and `e` is set
+//! by when `u_0` creeps back to zero. With the springs explicit that creep
+//! is forward Euler's: measured at the paper's step, `|e(dt) - e(0)| =
+//! 9.3e-5` on `e = 0.0091`, and not second order until `dt` is 16 times
+//! smaller. Taken with the dashpots, implicitly, the creep is SDIRK2's,
+//! stiffly accurate: `1e-9` there (`tests/dt_order.rs`).
+//!
+//! So a chain whose wall creep the split kernel gets wrong (the engine's
+//! `overdamped_wall`) takes whole steps of the
+//! two-stage, stiffly accurate SDIRK method (`g = 1 - 1/sqrt 2`) on
+//! `u' = v`, `M v' = K u + D v`, every mass alike. The stage positions
+//! `U_i = u + h sum_j a_ij V_j` eliminate, leaving one tridiagonal matrix
+//! `A = M - g h D - g^2 h^2 K` for both stages:
+//!
+//! ```text
+//! A V1 = M v + g h K u
+//! A V2 = M v + h K u + (1 - g) h (D + 2 g h K) V1
+//! u' = u + h ((1 - g) V1 + g V2),   v' = V2.
+//! ```
+//!
+//! It is L-stable and second order, and has the split kernel's `dt -> 0`
+//! limit: the same chain, the same wall law (the stage forces of the wall
+//! element act while it is compressed). An elastic layer of such a rod
+//! takes these steps too: within `O(dt^2)` of Beeman's, as the split
+//! kernel's layers are. The wall element switches on or off where `u_0`
+//! crosses zero: the step is redone in two parts that meet there (timed by
+//! linear interpolation), each with its own factor.
+//!
+//! The wall impulse is the stages' quadrature of the wall element's force,
+//! `h ((1 - g) F(U1, V1) + g F(U2, V2))`, which is exactly the momentum the
+//! step takes from the rod: the internal forces cancel in the sum. Under
+//! the unilateral law a step whose wall impulse would pull is redone with
+//! the wall giving none, as the split kernel does.
+//!
+//! Cost: two tridiagonal solves (in the blocked sweeps of
+//! `crate::damping::factor` for a long chain) and three passes per step,
+//! four to six times the split kernel's, which is why the engine runs it
+//! only where the split kernel's creep is first order.
+
+use crate::damping::{Factor, GAMMA, Quad, lane_length};
+use crate::layout::ChainLayout;
+use impact_model::WallContact;
+
+/// The chain's state and the factors of `A` for the wall element off and
+/// on.
+#[derive(Debug, Clone)]
+pub(crate) struct ImplicitChain {
+    u: Vec<f64>,
+    v: Vec<f64>,
+    mass: Vec<f64>,
+    /// Element `j` (below mass `j`; element 0 the wall's): `k_j`, `c_j`.
+    stiffness: Vec<f64>,
+    viscosity: Vec<f64>,
+    /// `c_j + 2 g dt k_j`: the second stage's `D + 2 g h K` at `h = dt`.
+    second_stage: Vec<f64>,
+    dt: f64,
+    unilateral: bool,
+    free: Factor,
+    with_wall: Factor,
+    /// Whether the wall element is compressed (it acts on mass 0).
+    wall_on: bool,
+    /// The state at the start of the (part of a) step being taken.
+    u_start: Vec<f64>,
+    v_start: Vec<f64>,
+    /// Scratch: `K u`, the right-hand side, the first stage's velocities,
+    /// the sweeps' lanes.
+    ku: Vec<f64>,
+    r: Vec<f64>,
+    v1: Vec<f64>,
+    lanes: Vec<Quad>,
+}
+
+impl ImplicitChain {
+    /// The chain at rest length, every mass moving down at `impact_speed`
+    /// and mass 0 touching the wall, under the wall law `law`.
+    pub(crate) fn new(layout: &ChainLayout, dt: f64, impact_speed: f64, law: WallContact) -> Self {
+        let n = layout.len();
+        let lane = lane_length(n);
+        let (k, c) = (&layout.stiffness, &layout.viscosity);
+        let placeholder = Factor::from_bands(&[1.0], &[0.0], &[0.0], 0);
+        let mut chain = Self {
+            u: vec![0.0; n],
+            v: vec![-impact_speed; n],
+            mass: layout.mass.clone(),
+            stiffness: k.clone(),
+            viscosity: c.clone(),
+            second_stage: second_stage(k, c, dt),
+            dt,
+            unilateral: law == WallContact::Unilateral,
+            free: placeholder.clone(),
+            with_wall: placeholder,
+            wall_on: true,
+            u_start: vec![0.0; n],
+            v_start: vec![0.0; n],
+            ku: vec![0.0; n],
+            r: vec![0.0; n],
+            v1: vec![0.0; n],
+            lanes: vec![Quad::ZERO; lane],
+        };
+        chain.free = chain.factor(dt, false, lane);
+        chain.with_wall = chain.factor(dt, true, lane);
+        chain
+    }
+
+    /// `A = M - g h D - g^2 h^2 K` for a step `h`, the wall element on or
+    /// off, factorised in blocks of `lane` masses.
+    fn factor(&self, h: f64, wall: bool, lane: usize) -> Factor {
+        let n = self.mass.len();
+        let (gh, g2h2) = (GAMMA * h, GAMMA * GAMMA * h * h);
+        let q = |j: usize| {
+            if (j == 0 && !wall) || j >= n {
+                0.0
+            } else {
+                gh * self.viscosity[j] + g2h2 * self.stiffness[j]
+            }
+        };
+        let diagonal: Vec<f64> = (0..n).map(|i| self.mass[i] + q(i) + q(i + 1)).collect();
+        let off: Vec<f64> = (0..n).map(|i| -q(i + 1)).collect();
+        Factor::from_bands(&diagonal, &off, &vec![0.0; n], lane)
+    }
+
+    /// Displacements now.
+    pub(crate) fn displacement(&self) -> &[f64] {
+        &self.u
+    }
+
+    /// Velocities now.
+    pub(crate) fn velocities(&self) -> &[f64] {
+        &self.v
+    }
+
+    /// One step of `dt`; returns the wall's impulse on the rod during it
+    /// (upward positive).
+    pub(crate) fn step(&mut self) -> f64 {
+        self.keep_start();
+        let u0_start = self.u[0];
+        let impulse = self.wall_step(self.dt, None);
+        if (self.u[0] < 0.0) == self.wall_on {
+            return impulse;
+        }
+        // the wall element switched within the step: redo it in two parts
+        // that meet where `u_0` crossed zero
+        let theta = (u0_start / (u0_start - self.u[0])).clamp(0.0, 1.0);
+        self.back_to_start();
+        let (before, after) = (theta * self.dt, (1.0 - theta) * self.dt);
+        let mut impulse = 0.0;
+        if before > 0.0 {
+            impulse += self.wall_step(before, Some(self.factor(before, self.wall_on, 0)));
+        }
+        self.wall_on = !self.wall_on;
+        if after > 0.0 {
+            self.keep_start();
+            impulse += self.wall_step(after, Some(self.factor(after, self.wall_on, 0)));
+        }
+        impulse
+    }
+
+    /// A step of `h` (by `factor`, or the kept factors of `dt`) under the
+    /// wall law: the unilateral wall's step that would pull is redone
+    /// with no wall at all.
+    fn wall_step(&mut self, h: f64, factor: Option<Factor>) -> f64 {
+        let impulse = self.sdirk(h, self.wall_on, factor.as_ref());
+        if !(self.unilateral && self.wall_on && impulse < 0.0) {
+            return impulse;
+        }
+        self.back_to_start();
+        let free = factor.map(|_| self.factor(h, false, 0));
+        self.sdirk(h, false, free.as_ref());
+        0.0
+    }
+
+    fn keep_start(&mut self) {
+        self.u_start.copy_from_slice(&self.u);
+        self.v_start.copy_from_slice(&self.v);
+    }
+
+    fn back_to_start(&mut self) {
+        self.u.copy_from_slice(&self.u_start);
+        self.v.copy_from_slice(&self.v_start);
+    }
+
+    /// One SDIRK2 step of `h` with the wall element on or off, by `factor`
+    /// (`None`: the kept one, `h = dt`); returns the wall's impulse.
+    fn sdirk(&mut self, h: f64, wall: bool, factor: Option<&Factor>) -> f64 {
+        let w = if wall { 1.0 } else { 0.0 };
+        let (k0, c0) = (w * self.stiffness[0], w * self.viscosity[0]);
+        let kept = if wall { &self.with_wall } else { &self.free };
+        let factor = factor.unwrap_or(kept);
+        // first stage: A V1 = M v + g h K u
+        let gh = GAMMA * h;
+        forces(&self.stiffness, k0, &self.u, |j, ku| {
+            self.ku[j] = ku;
+            self.r[j] = self.mass[j] * self.v[j] + gh * ku;
+        });
+        factor.solve_into(&mut self.r, &mut self.lanes, &mut self.v1);
+        let wall_force_1 = -(k0 * (self.u[0] + gh * self.v1[0]) + c0 * self.v1[0]);
+        // second stage: A V2 = M v + h K u + (1 - g) h (D + 2 g h K) V1
+        let owned;
+        let e = if h == self.dt {
+            &self.second_stage
+        } else {
+            owned = second_stage(&self.stiffness, &self.viscosity, h);
+            &owned
+        };
+        let (e0, s) = (c0 + 2.0 * gh * k0, (1.0 - GAMMA) * h);
+        forces(e, e0, &self.v1, |j, ev1| {
+            self.r[j] = self.mass[j] * self.v[j] + h * self.ku[j] + s * ev1;
+        });
+        factor.solve_into(&mut self.r, &mut self.lanes, &mut self.v);
+        let (b1, b2) = ((1.0 - GAMMA) * h, GAMMA * h);
+        for ((u, v1), v2) in self.u.iter_mut().zip(&self.v1).zip(&self.v) {
+            *u += b1 * v1 + b2 * v2;
+        }
+        let wall_force_2 = -(k0 * self.u[0] + c0 * self.v[0]);
+        h * ((1.0 - GAMMA) * wall_force_1 + GAMMA * wall_force_2)
+    }
+}
+
+/// `c_j + 2 g h k_j`.
+fn second_stage(k: &[f64], c: &[f64], h: f64) -> Vec<f64> {
+    k.iter()
+        .zip(c)
+        .map(|(k, c)| c + 2.0 * GAMMA * h * k)
+        .collect()
+}
+
+/// The elements' forces on each mass `j` for constants `s` (element `j`
+/// below mass `j`, the wall element's replaced by `wall`) and
+/// displacements or velocities `x`, `s_{j+1} (x_{j+1} - x_j) - s_j (x_j -
+/// x_{j-1})` with the wall at `x_{-1} = 0`, handed to `take(j, force)`.
+#[inline(always)]
+fn forces(s: &[f64], wall: f64, x: &[f64], mut take: impl FnMut(usize, f64)) {
+    let n = x.len();
+    let mut below = wall * x[0];
+    for j in 0..n - 1 {
+        let above = s[j + 1] * (x[j + 1] - x[j]);
+        take(j, above - below);
+        below = above;
+    }
+    take(n - 1, -below);
+}
