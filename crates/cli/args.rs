@@ -131,7 +131,7 @@ pub struct ChainArgs {
 /// The viscous chain's kernels.
 #[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ViscousKernelChoice {
-    /// implicit for a viscous bottom under the paper's law whose wall dashpot stops mass 0 within a step or whose relaxation time exceeds 1/20 of its transit time; split elsewhere
+    /// implicit for a viscous bottom whose wall dashpot stops mass 0 within a step or whose relaxation time exceeds 1/20 of its transit time; split elsewhere
     Auto,
     /// A Beeman step of the springs, then an SDIRK2 step of the dashpots: fast; second order while dashpots stay soft against the step
     Split,

@@ -57,7 +57,13 @@ pub fn summary(title: &str, o: &Timed<Outcome>) -> String {
     let _ = writeln!(s, "{title}");
     let engine = match o.engine {
         impact_model::EngineKind::Wave => "wave (exact front tracing)",
-        impact_model::EngineKind::Chain => "chain (Beeman mass-spring)",
+        impact_model::EngineKind::Chain => match o.viscous_kernel.as_deref() {
+            Some("implicit") => {
+                "chain (mass-spring-dashpot, implicit kernel: SDIRK2 on springs and dashpots)"
+            }
+            Some(_) => "chain (Beeman springs, SDIRK2 dashpots)",
+            None => "chain (Beeman mass-spring)",
+        },
         impact_model::EngineKind::RigidBottom => {
             "rigid-bottom (rigid mass under the elastic stack)"
         }

@@ -87,7 +87,7 @@ fn calibration_round_trip() {
     let t = v["tau_c_over_l"].as_f64().unwrap();
     let back = json(&["calibrate", "--tau-c-over-l", &t.to_string(), "--json"]);
     assert!((back["restitution"].as_f64().unwrap() - 0.72).abs() < 1e-9);
-    // the paper's wall reaches e = 0.0088 at tau c/L = 1, and holds the rod
+    // the paper's wall reaches e = 0.0087 at tau c/L = 1, and holds the rod
     // beyond; the unilateral wall keeps e above 0.01 up to tau c/L = 3
     let out = impact(&["calibrate", "--restitution", "0.005"]);
     assert_eq!(out.status.code(), Some(2));

@@ -38,10 +38,10 @@ pub struct ChainRecord {
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ViscousKernel {
-    /// [`ViscousKernel::Implicit`] for a viscous bottom under the paper's
-    /// law whose wall dashpot stops mass 0 within a step (`c_0 dt / m_0 >
-    /// 1`) or whose relaxation time exceeds `1/20` of its transit time:
-    /// there the split kernel's creep off the wall is first order.
+    /// [`ViscousKernel::Implicit`] for a viscous bottom whose wall dashpot
+    /// stops mass 0 within a step (`c_0 dt / m_0 > 1`) or whose relaxation
+    /// time exceeds `1/20` of its transit time: there the split kernel's
+    /// wall step is first order.
     /// [`ViscousKernel::Split`] everywhere else: four to six times faster.
     #[default]
     Auto,
@@ -50,6 +50,17 @@ pub enum ViscousKernel {
     Split,
     /// SDIRK2 on springs and dashpots together, every mass.
     Implicit,
+}
+
+impl ViscousKernel {
+    /// The kernel's name in outputs and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Auto => "auto",
+            Self::Split => "split",
+            Self::Implicit => "implicit",
+        }
+    }
 }
 
 /// Settings of [`crate::ChainEngine`].

@@ -11,10 +11,14 @@
 //! is forward Euler's: measured at the paper's step, `|e(dt) - e(0)| =
 //! 9.3e-5` on `e = 0.0091`, and not second order until `dt` is 16 times
 //! smaller. Taken with the dashpots, implicitly, the creep is SDIRK2's,
-//! stiffly accurate: `1e-9` there (`tests/dt_order.rs`).
+//! stiffly accurate: `1e-9` there (`tests/dt_order.rs`). The split step
+//! also drifts as the chain grows (its dashpots stiffen as `N`): at
+//! `N = 1000` a viscous bottom (`x = 0.5`, `alpha = 0.3`, `tau1 = 0.08`)
+//! lands `2.8e-5` (paper's law) and `3.1e-5` (unilateral) from its limit,
+//! this kernel `1e-9`.
 //!
-//! So a chain whose wall creep the split kernel gets wrong (the engine's
-//! `overdamped_wall`) takes whole steps of the
+//! So a chain with such a viscous bottom (the engine's `stiff_wall`)
+//! takes whole steps of the
 //! two-stage, stiffly accurate SDIRK method (`g = 1 - 1/sqrt 2`) on
 //! `u' = v`, `M v' = K u + D v`, every mass alike. The stage positions
 //! `U_i = u + h sum_j a_ij V_j` eliminate, leaving one tridiagonal matrix
@@ -43,7 +47,7 @@
 //! Cost: two tridiagonal solves (in the blocked sweeps of
 //! `crate::damping::factor` for a long chain) and three passes per step,
 //! four to six times the split kernel's, which is why the engine runs it
-//! only where the split kernel's creep is first order.
+//! only where the split kernel's wall step is first order.
 
 use crate::damping::{Factor, GAMMA, Quad, lane_length};
 use crate::layout::ChainLayout;

@@ -9,7 +9,7 @@
 //! Only the layout (`ChainLayout`) is shared.
 //!
 //! And which kernel the engine chooses: the implicit one exactly where the
-//! split kernel's creep off the wall is first order.
+//! split kernel's wall step is first order.
 
 mod common;
 
@@ -248,10 +248,10 @@ fn e_and_contacts_are_the_written_out_methods() {
     }
 }
 
-/// The engine's choice: the implicit kernel for a viscous bottom under the
-/// paper's law whose wall dashpot stops mass 0 within a step or whose
-/// relaxation time is above `1/20` of its transit time; the split kernel
-/// for the rest (viscous tops, the unilateral law, soft bottoms).
+/// The engine's choice: the implicit kernel for a viscous bottom whose
+/// wall dashpot stops mass 0 within a step or whose relaxation time is
+/// above `1/20` of its transit time, under either law; the split kernel
+/// for the rest (viscous tops, soft bottoms).
 #[test]
 fn the_engine_chooses_the_implicit_kernel_where_the_wall_creeps() {
     use WallContact::{Paper, Unilateral};
@@ -280,6 +280,12 @@ fn the_engine_chooses_the_implicit_kernel_where_the_wall_creeps() {
         (
             "homogeneous tau 1, unilateral",
             homogeneous_under(1.0, Unilateral),
+            200,
+            implicit,
+        ),
+        (
+            "homogeneous tau 0.03, unilateral",
+            homogeneous_under(0.03, Unilateral),
             200,
             split,
         ),

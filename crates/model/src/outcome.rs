@@ -143,6 +143,11 @@ pub struct Outcome {
     /// Time steps taken (chain).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub steps: Option<u64>,
+    /// Which kernel stepped a viscous chain's dashpots: `split` (a Beeman
+    /// step of the springs, then an SDIRK2 step of the dashpots) or
+    /// `implicit` (SDIRK2 on springs and dashpots together).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub viscous_kernel: Option<String>,
     /// What the exact engine dropped or merged (wave engine).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub truncation: Option<Truncation>,
@@ -203,6 +208,7 @@ impl Outcome {
             end_time,
             events: None,
             steps: None,
+            viscous_kernel: None,
             truncation: None,
             error_bound: None,
             error_estimate: None,
