@@ -34,31 +34,27 @@ pub struct ChainRecord {
 
 /// Which kernel steps a viscous chain. Both have the same `dt -> 0`
 /// limit, the chain of the paper's model; they differ in how far from it a
-/// finite step lands.
+/// finite step lands, and in cost.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ViscousKernel {
-    /// [`ViscousKernel::Implicit`] for a viscous bottom whose wall dashpot
-    /// stops mass 0 within a step (`c_0 dt / m_0 > 1`) or whose relaxation
-    /// time exceeds `1/20` of its transit time: there the split kernel's
-    /// wall step is first order.
-    /// [`ViscousKernel::Split`] everywhere else: four to six times faster.
+    /// SDIRK2 on springs and dashpots together, every mass
+    /// (`crate::implicit`): stiffly accurate, within `2e-5` of the limit at
+    /// the paper's step on every scene measured.
     #[default]
-    Auto,
-    /// A Beeman step of the springs, then an SDIRK2 step of the dashpots
-    /// (`crate::viscous`).
-    Split,
-    /// SDIRK2 on springs and dashpots together, every mass.
     Implicit,
+    /// A Beeman step of the springs, then an SDIRK2 step of the dashpots
+    /// (`crate::viscous`): four to five times faster, but up to `6e-4`
+    /// from the limit where a dashpot is stiff against the step.
+    Split,
 }
 
 impl ViscousKernel {
     /// The kernel's name in outputs and on the command line.
     pub fn name(self) -> &'static str {
         match self {
-            Self::Auto => "auto",
-            Self::Split => "split",
             Self::Implicit => "implicit",
+            Self::Split => "split",
         }
     }
 }
@@ -78,7 +74,7 @@ pub struct ChainConfig {
     pub max_steps: u64,
     /// What to record besides the outcome.
     pub record: ChainRecord,
-    /// Which kernel steps a viscous chain. Default: [`ViscousKernel::Auto`].
+    /// Which kernel steps a viscous chain. Default: [`ViscousKernel::Implicit`].
     pub viscous_kernel: ViscousKernel,
 }
 
@@ -104,7 +100,7 @@ impl Default for ChainConfig {
             stop: ChainStop::Escape,
             max_steps: 2_000_000_000,
             record: ChainRecord::default(),
-            viscous_kernel: ViscousKernel::Auto,
+            viscous_kernel: ViscousKernel::Implicit,
         }
     }
 }

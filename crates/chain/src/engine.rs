@@ -52,28 +52,12 @@ const INTEGRATOR_MARGIN: f64 = 0.05;
 enum Kernel {
     /// No dashpot anywhere: positions only.
     Elastic(VerletChain),
-    /// Dashpots somewhere: Beeman's state where they act (boxed: it holds
-    /// the dashpots' factors too).
+    /// Dashpots somewhere, the split kernel asked for: Beeman's state where
+    /// they act (boxed: it holds the dashpots' factors too).
     Viscous(Box<ViscousChain>),
-    /// A viscous bottom the split kernel's wall step gets wrong (see
-    /// [`stiff_wall`]): springs and dashpots implicit together
-    /// (`crate::implicit`).
+    /// Dashpots somewhere, the default: springs and dashpots implicit
+    /// together (`crate::implicit`).
     Implicit(Box<ImplicitChain>),
-}
-
-/// Whether the split kernel's wall step would be first order: a viscous
-/// bottom whose wall dashpot stops mass 0 within a step (`c_0 dt / m_0 >
-/// 1`) or whose relaxation time is more than `1/20` of its transit time
-/// (`tau_1 c_1 / L_1 > 0.05`: under the paper's law the wall's pull then
-/// holds the rod long enough for its creep to set `e`). Measured at the
-/// paper's step against each kernel's `dt -> 0` limit (`crate::implicit`):
-/// below both, the split kernel is within `3e-6` on the homogeneous rods
-/// and Fig. 10's bottom; above either, up to `1e-4` away under the paper's
-/// law and `3e-5` under the unilateral one, the implicit kernel within
-/// `1e-8`.
-fn stiff_wall(rod: &Rod, layout: &ChainLayout, dt: f64) -> bool {
-    let (c0, m0) = (layout.viscosity[0], layout.mass[0]);
-    c0 > 0.0 && (c0 * dt / m0 > 1.0 || rod.relaxation_time(0) > 0.05 * rod.transit_times()[0])
 }
 
 /// The discrete chain for one rod.
@@ -110,12 +94,7 @@ impl ChainEngine {
         config.check()?;
         let layout = ChainLayout::new(rod, config.masses)?;
         let dt = layout.paper_time_step() * config.dt_factor;
-        let implicit = match config.viscous_kernel {
-            ViscousKernel::Auto => stiff_wall(rod, &layout, dt),
-            ViscousKernel::Split => false,
-            ViscousKernel::Implicit => true,
-        };
-        let kernel = if implicit {
+        let kernel = if layout.is_viscous() && config.viscous_kernel == ViscousKernel::Implicit {
             Kernel::Implicit(Box::new(ImplicitChain::new(
                 &layout,
                 dt,

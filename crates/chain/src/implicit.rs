@@ -71,9 +71,10 @@ pub(crate) struct ImplicitChain {
     with_wall: Factor,
     /// Whether the wall element is compressed (it acts on mass 0).
     wall_on: bool,
-    /// The state at the start of the (part of a) step being taken.
-    u_start: Vec<f64>,
-    v_start: Vec<f64>,
+    /// The state a step computes, swapped in when the step stands: a step
+    /// redone finds the state it started from untouched.
+    u_next: Vec<f64>,
+    v_next: Vec<f64>,
     /// Scratch: `K u`, the right-hand side, the first stage's velocities,
     /// the sweeps' lanes.
     ku: Vec<f64>,
@@ -102,8 +103,8 @@ impl ImplicitChain {
             free: placeholder.clone(),
             with_wall: placeholder,
             wall_on: true,
-            u_start: vec![0.0; n],
-            v_start: vec![0.0; n],
+            u_next: vec![0.0; n],
+            v_next: vec![0.0; n],
             ku: vec![0.0; n],
             r: vec![0.0; n],
             v1: vec![0.0; n],
@@ -144,55 +145,50 @@ impl ImplicitChain {
     /// One step of `dt`; returns the wall's impulse on the rod during it
     /// (upward positive).
     pub(crate) fn step(&mut self) -> f64 {
-        self.keep_start();
-        let u0_start = self.u[0];
         let impulse = self.wall_step(self.dt, None);
-        if (self.u[0] < 0.0) == self.wall_on {
+        if (self.u_next[0] < 0.0) == self.wall_on {
+            self.accept();
             return impulse;
         }
-        // the wall element switched within the step: redo it in two parts
+        // the wall element switched within the step: take it in two parts
         // that meet where `u_0` crossed zero
-        let theta = (u0_start / (u0_start - self.u[0])).clamp(0.0, 1.0);
-        self.back_to_start();
+        let theta = (self.u[0] / (self.u[0] - self.u_next[0])).clamp(0.0, 1.0);
         let (before, after) = (theta * self.dt, (1.0 - theta) * self.dt);
         let mut impulse = 0.0;
         if before > 0.0 {
             impulse += self.wall_step(before, Some(self.factor(before, self.wall_on, 0)));
+            self.accept();
         }
         self.wall_on = !self.wall_on;
         if after > 0.0 {
-            self.keep_start();
             impulse += self.wall_step(after, Some(self.factor(after, self.wall_on, 0)));
+            self.accept();
         }
         impulse
     }
 
     /// A step of `h` (by `factor`, or the kept factors of `dt`) under the
-    /// wall law: the unilateral wall's step that would pull is redone
-    /// with no wall at all.
+    /// wall law, into `u_next`, `v_next`: the unilateral wall's step that
+    /// would pull is taken again with no wall at all.
     fn wall_step(&mut self, h: f64, factor: Option<Factor>) -> f64 {
         let impulse = self.sdirk(h, self.wall_on, factor.as_ref());
         if !(self.unilateral && self.wall_on && impulse < 0.0) {
             return impulse;
         }
-        self.back_to_start();
         let free = factor.map(|_| self.factor(h, false, 0));
         self.sdirk(h, false, free.as_ref());
         0.0
     }
 
-    fn keep_start(&mut self) {
-        self.u_start.copy_from_slice(&self.u);
-        self.v_start.copy_from_slice(&self.v);
+    /// The step just computed becomes the state.
+    fn accept(&mut self) {
+        std::mem::swap(&mut self.u, &mut self.u_next);
+        std::mem::swap(&mut self.v, &mut self.v_next);
     }
 
-    fn back_to_start(&mut self) {
-        self.u.copy_from_slice(&self.u_start);
-        self.v.copy_from_slice(&self.v_start);
-    }
-
-    /// One SDIRK2 step of `h` with the wall element on or off, by `factor`
-    /// (`None`: the kept one, `h = dt`); returns the wall's impulse.
+    /// One SDIRK2 step of `h` from `u`, `v` into `u_next`, `v_next`, the
+    /// wall element on or off, by `factor` (`None`: the kept one, `h =
+    /// dt`); returns the wall's impulse.
     fn sdirk(&mut self, h: f64, wall: bool, factor: Option<&Factor>) -> f64 {
         let w = if wall { 1.0 } else { 0.0 };
         let (k0, c0) = (w * self.stiffness[0], w * self.viscosity[0]);
@@ -200,10 +196,10 @@ impl ImplicitChain {
         let factor = factor.unwrap_or(kept);
         // first stage: A V1 = M v + g h K u
         let gh = GAMMA * h;
-        forces(&self.stiffness, k0, &self.u, |j, ku| {
-            self.ku[j] = ku;
-            self.r[j] = self.mass[j] * self.v[j] + gh * ku;
-        });
+        forces(&self.stiffness, k0, &self.u, &mut self.ku);
+        for (((r, m), v), ku) in self.r.iter_mut().zip(&self.mass).zip(&self.v).zip(&self.ku) {
+            *r = m * v + gh * ku;
+        }
         factor.solve_into(&mut self.r, &mut self.lanes, &mut self.v1);
         let wall_force_1 = -(k0 * (self.u[0] + gh * self.v1[0]) + c0 * self.v1[0]);
         // second stage: A V2 = M v + h K u + (1 - g) h (D + 2 g h K) V1
@@ -215,15 +211,22 @@ impl ImplicitChain {
             &owned
         };
         let (e0, s) = (c0 + 2.0 * gh * k0, (1.0 - GAMMA) * h);
-        forces(e, e0, &self.v1, |j, ev1| {
-            self.r[j] = self.mass[j] * self.v[j] + h * self.ku[j] + s * ev1;
-        });
-        factor.solve_into(&mut self.r, &mut self.lanes, &mut self.v);
-        let (b1, b2) = ((1.0 - GAMMA) * h, GAMMA * h);
-        for ((u, v1), v2) in self.u.iter_mut().zip(&self.v1).zip(&self.v) {
-            *u += b1 * v1 + b2 * v2;
+        forces(e, e0, &self.v1, &mut self.r);
+        for (((r, m), v), ku) in self.r.iter_mut().zip(&self.mass).zip(&self.v).zip(&self.ku) {
+            *r = m * v + h * ku + s * *r;
         }
-        let wall_force_2 = -(k0 * self.u[0] + c0 * self.v[0]);
+        factor.solve_into(&mut self.r, &mut self.lanes, &mut self.v_next);
+        let (b1, b2) = ((1.0 - GAMMA) * h, GAMMA * h);
+        for (((u_next, u), v1), v2) in self
+            .u_next
+            .iter_mut()
+            .zip(&self.u)
+            .zip(&self.v1)
+            .zip(&self.v_next)
+        {
+            *u_next = u + (b1 * v1 + b2 * v2);
+        }
+        let wall_force_2 = -(k0 * self.u_next[0] + c0 * self.v_next[0]);
         h * ((1.0 - GAMMA) * wall_force_1 + GAMMA * wall_force_2)
     }
 }
@@ -239,15 +242,26 @@ fn second_stage(k: &[f64], c: &[f64], h: f64) -> Vec<f64> {
 /// The elements' forces on each mass `j` for constants `s` (element `j`
 /// below mass `j`, the wall element's replaced by `wall`) and
 /// displacements or velocities `x`, `s_{j+1} (x_{j+1} - x_j) - s_j (x_j -
-/// x_{j-1})` with the wall at `x_{-1} = 0`, handed to `take(j, force)`.
-#[inline(always)]
-fn forces(s: &[f64], wall: f64, x: &[f64], mut take: impl FnMut(usize, f64)) {
+/// x_{j-1})` with the wall at `x_{-1} = 0`, into `out`. The inner masses
+/// go as equal-length slices, which the compiler packs into SIMD.
+fn forces(s: &[f64], wall: f64, x: &[f64], out: &mut [f64]) {
     let n = x.len();
-    let mut below = wall * x[0];
-    for j in 0..n - 1 {
-        let above = s[j + 1] * (x[j + 1] - x[j]);
-        take(j, above - below);
-        below = above;
+    if n == 1 {
+        out[0] = -wall * x[0];
+        return;
     }
-    take(n - 1, -below);
+    out[0] = s[1] * (x[1] - x[0]) - wall * x[0];
+    let (lo, mid, hi) = (&x[..n - 2], &x[1..n - 1], &x[2..]);
+    let (below, above) = (&s[1..n - 1], &s[2..]);
+    for (((((f, lo), mid), hi), sb), sa) in out[1..n - 1]
+        .iter_mut()
+        .zip(lo)
+        .zip(mid)
+        .zip(hi)
+        .zip(below)
+        .zip(above)
+    {
+        *f = sa * (hi - mid) - sb * (mid - lo);
+    }
+    out[n - 1] = -s[n - 1] * (x[n - 1] - x[n - 2]);
 }

@@ -8,8 +8,7 @@
 //! unilateral law, redone without the wall when its impulse would pull.
 //! Only the layout (`ChainLayout`) is shared.
 //!
-//! And which kernel the engine chooses: the implicit one exactly where the
-//! split kernel's wall step is first order.
+//! And which kernel the engine runs: the implicit one unless told.
 
 mod common;
 
@@ -248,71 +247,28 @@ fn e_and_contacts_are_the_written_out_methods() {
     }
 }
 
-/// The engine's choice: the implicit kernel for a viscous bottom whose
-/// wall dashpot stops mass 0 within a step or whose relaxation time is
-/// above `1/20` of its transit time, under either law; the split kernel
-/// for the rest (viscous tops, soft bottoms).
+/// The engine's choice: the implicit kernel for any viscous chain unless
+/// the split one is asked for by name; an elastic chain runs neither.
 #[test]
-fn the_engine_chooses_the_implicit_kernel_where_the_wall_creeps() {
-    use WallContact::{Paper, Unilateral};
-    let fig10 = |law| {
-        // Fig. 10's materials at x = 0.5 (e1 = 0.94: tau1 c1 / L1 ~ 0.007)
-        let mut scene = impact_model::Bilayer::new(0.5, 0.005).unwrap().scene();
-        scene.layers[0].restitution = Some(0.94);
-        scene.layers[1].restitution = Some(0.72);
-        common::with_law(scene, law)
-    };
-    let chosen = |rod: &Rod, masses: usize| {
-        let config = ChainConfig {
-            masses,
+fn viscous_chains_run_the_implicit_kernel_unless_told() {
+    let chosen = |rod: &Rod, kernel: Option<ViscousKernel>| {
+        let mut config = ChainConfig {
+            masses: 200,
             ..ChainConfig::default()
         };
+        if let Some(kernel) = kernel {
+            config.viscous_kernel = kernel;
+        }
         ChainEngine::new(rod, config).unwrap().viscous_kernel()
     };
     let (split, implicit) = (Some(ViscousKernel::Split), Some(ViscousKernel::Implicit));
-    let expected = [
-        (
-            "homogeneous tau 1, paper",
-            homogeneous_under(1.0, Paper),
-            200,
-            implicit,
-        ),
-        (
-            "homogeneous tau 1, unilateral",
-            homogeneous_under(1.0, Unilateral),
-            200,
-            implicit,
-        ),
-        (
-            "homogeneous tau 0.03, unilateral",
-            homogeneous_under(0.03, Unilateral),
-            200,
-            split,
-        ),
-        // tau c / L = 0.03 < 0.05, c0 dt / m0 = 0.38 at N = 200, 1.9 at 10^3
-        (
-            "homogeneous tau 0.03, N 200",
-            homogeneous_under(0.03, Paper),
-            200,
-            split,
-        ),
-        (
-            "homogeneous tau 0.03, N 1000",
-            homogeneous_under(0.03, Paper),
-            1000,
-            implicit,
-        ),
-        ("Fig. 10, N 1000", fig10(Paper), 1000, split),
-        ("Fig. 10, N 10^4", fig10(Paper), 10_000, implicit),
-        (
-            "viscous top",
-            viscous_bilayer(0.3, 0.005, [0.0, 2.0], Paper),
-            1000,
-            split,
-        ),
-        ("elastic", common::bilayer(0.4, 0.05), 200, None),
-    ];
-    for (label, rod, masses, kernel) in &expected {
-        assert_eq!(chosen(rod, *masses), *kernel, "{label}");
+    for law in WallContact::ALL {
+        for (label, rod) in cases(law) {
+            assert_eq!(chosen(&rod, None), implicit, "{label}");
+            assert_eq!(chosen(&rod, split), split, "{label}");
+        }
     }
+    let elastic = common::bilayer(0.4, 0.05);
+    assert_eq!(chosen(&elastic, None), None);
+    assert_eq!(chosen(&elastic, split), None);
 }

@@ -17,10 +17,8 @@
 //! whole runs must give the same `e` and contacts to `1e-12`, for a viscous
 //! top, a viscous bottom (the wall dashpot), a fully viscous rod and a
 //! viscous-elastic-viscous sandwich (two segments, with elastic masses
-//! between), under both wall laws. The split kernel is asked for by name:
-//! under the paper's law several of these rods' wall dashpots over-damp
-//! mass 0, where the engine would choose the implicit kernel
-//! (`tests/implicit_kernel.rs`).
+//! between), under both wall laws. The split kernel (not the default) is asked for by
+//! name.
 
 mod common;
 use common::*;
