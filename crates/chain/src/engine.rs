@@ -1,11 +1,14 @@
-//! The chain's time loop: Beeman springs, implicit dashpots, unilateral wall.
+//! The chain's time loop: the kernel's steps, the wall's impulse and
+//! contacts, the stop rules.
 //!
 //! An elastic chain needs positions only (the wall impulse, the contacts
 //! and the escape decision depend on nothing else), so it runs
 //! [`VerletChain`], Beeman's positions as Verlet's, and rebuilds Beeman's
 //! velocities when they are asked for. A viscous chain runs
-//! [`ViscousChain`]: Beeman's whole state (`u, v, a, a_prev`) on the masses
-//! its dashpots act on, Verlet's sweep on the others.
+//! [`ImplicitChain`] (SDIRK2 on springs and dashpots together), or, asked
+//! for by name, [`ViscousChain`]: Beeman's whole state (`u, v, a, a_prev`)
+//! on the masses its dashpots act on, Verlet's sweep on the others, and an
+//! SDIRK2 step of the dashpots after each step.
 
 use crate::config::{ChainConfig, ChainStop, ViscousKernel};
 use crate::error::ChainError;

@@ -1,24 +1,23 @@
-//! The over-damped wall's kernel: SDIRK2 on springs and dashpots together.
+//! The viscous chain's default kernel: SDIRK2 on springs and dashpots
+//! together.
 //!
-//! Why a second viscous kernel. The split kernel (`crate::viscous`: a
-//! Beeman step of the springs, then an SDIRK2 step of the dashpots) is
-//! second order while the step resolves how fast a dashpot stops a mass.
-//! Under the paper's wall law a viscous bottom's wall dashpot can stop
-//! mass 0 within a fraction of a step (`c_0 dt / m_0 = 12.6` for a
-//! homogeneous rod at `tau c / L = 1`, `N = 200`). The bottom then creeps
-//! at the velocity where spring and dashpot forces balance, and `e` is set
-//! by when `u_0` creeps back to zero. With the springs explicit that creep
-//! is forward Euler's: measured at the paper's step, `|e(dt) - e(0)| =
-//! 9.3e-5` on `e = 0.0091`, and not second order until `dt` is 16 times
-//! smaller. Taken with the dashpots, implicitly, the creep is SDIRK2's,
-//! stiffly accurate: `1e-9` there (`tests/dt_order.rs`). The split step
-//! also drifts as the chain grows (its dashpots stiffen as `N`): at
-//! `N = 1000` a viscous bottom (`x = 0.5`, `alpha = 0.3`, `tau1 = 0.08`)
-//! lands `2.8e-5` (paper's law) and `3.1e-5` (unilateral) from its limit,
-//! this kernel `1e-9`.
+//! Why not the split kernel (`crate::viscous`: a Beeman step of the
+//! springs, then an SDIRK2 step of the dashpots). It is second order while
+//! the step resolves how fast a dashpot stops a mass, and its splitting
+//! error is large where it does not. Under the paper's wall law a viscous
+//! bottom's wall dashpot can stop mass 0 within a fraction of a step
+//! (`c_0 dt / m_0 = 12.6` for a homogeneous rod at `tau c / L = 1`,
+//! `N = 200`). The bottom then creeps at the velocity where spring and
+//! dashpot forces balance, and `e` is set by when `u_0` creeps back to
+//! zero. With the springs explicit that creep is forward Euler's: measured
+//! at the paper's step, `|e(dt) - e(0)| = 9.3e-5` on `e = 0.0091`, and not
+//! second order until `dt` is 16 times smaller. A viscous top with stiff
+//! dashpots (`x = 0.5`, `alpha = 0.05`, `tau2 = 1`) chatters on the wall and
+//! lands `3.3e-4` from its limit (`6.2e-4` at `N = 400`). Taken with the
+//! dashpots, implicitly, the springs' part is SDIRK2's too, stiffly
+//! accurate: `1e-9` and `1.6e-5` there (`tests/dt_order.rs`).
 //!
-//! So a chain with such a viscous bottom (the engine's `stiff_wall`)
-//! takes whole steps of the
+//! So a viscous chain takes whole steps of the
 //! two-stage, stiffly accurate SDIRK method (`g = 1 - 1/sqrt 2`) on
 //! `u' = v`, `M v' = K u + D v`, every mass alike. The stage positions
 //! `U_i = u + h sum_j a_ij V_j` eliminate, leaving one tridiagonal matrix
@@ -32,7 +31,10 @@
 //!
 //! It is L-stable and second order, and has the split kernel's `dt -> 0`
 //! limit: the same chain, the same wall law (the stage forces of the wall
-//! element act while it is compressed). An elastic layer of such a rod
+//! element act while it is compressed). For a fixed wall state it never
+//! adds energy: the system is dissipative in its energy norm and SDIRK2's
+//! stability function is bounded by 1 on the left half-plane (von
+//! Neumann's inequality). An elastic layer of such a rod
 //! takes these steps too: within `O(dt^2)` of Beeman's, as the split
 //! kernel's layers are. The wall element switches on or off where `u_0`
 //! crosses zero: the step is redone in two parts that meet there (timed by
@@ -46,8 +48,7 @@
 //!
 //! Cost: two tridiagonal solves (in the blocked sweeps of
 //! `crate::damping::factor` for a long chain) and three passes per step,
-//! four to six times the split kernel's, which is why the engine runs it
-//! only where the split kernel's wall step is first order.
+//! four to five times the split kernel's, which stays available by name.
 
 use crate::damping::{Factor, GAMMA, Quad, lane_length};
 use crate::layout::ChainLayout;
