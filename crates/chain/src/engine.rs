@@ -57,7 +57,7 @@ enum Kernel {
     Elastic(VerletChain),
     /// Dashpots somewhere, the split kernel asked for: Beeman's state where
     /// they act (boxed: it holds the dashpots' factors too).
-    Viscous(Box<ViscousChain>),
+    Split(Box<ViscousChain>),
     /// Dashpots somewhere, the default: springs and dashpots implicit
     /// together (`crate::implicit`).
     Implicit(Box<ImplicitChain>),
@@ -105,7 +105,7 @@ impl ChainEngine {
                 rod.wall_contact(),
             )))
         } else if layout.is_viscous() {
-            Kernel::Viscous(Box::new(ViscousChain::new(&layout, dt, rod.impact_speed())))
+            Kernel::Split(Box::new(ViscousChain::new(&layout, dt, rod.impact_speed())))
         } else {
             Kernel::Elastic(VerletChain::new(&layout, dt, rod.impact_speed()))
         };
@@ -142,7 +142,7 @@ impl ChainEngine {
     pub fn viscous_kernel(&self) -> Option<ViscousKernel> {
         match self.kernel {
             Kernel::Elastic(_) => None,
-            Kernel::Viscous(_) => Some(ViscousKernel::Split),
+            Kernel::Split(_) => Some(ViscousKernel::Split),
             Kernel::Implicit(_) => Some(ViscousKernel::Implicit),
         }
     }
@@ -150,7 +150,7 @@ impl ChainEngine {
     /// True when the dashpot kernel runs; an elastic scene never does any
     /// dashpot work.
     pub fn uses_dashpots(&self) -> bool {
-        matches!(self.kernel, Kernel::Viscous(_) | Kernel::Implicit(_))
+        matches!(self.kernel, Kernel::Split(_) | Kernel::Implicit(_))
     }
 
     /// How the rod was mapped onto masses.
@@ -192,7 +192,7 @@ impl ChainEngine {
     fn displacement(&self) -> Cow<'_, [f64]> {
         match &self.kernel {
             Kernel::Elastic(k) => Cow::Borrowed(k.displacement()),
-            Kernel::Viscous(k) => k.displacement(),
+            Kernel::Split(k) => k.displacement(),
             Kernel::Implicit(k) => Cow::Borrowed(k.displacement()),
         }
     }
@@ -201,7 +201,7 @@ impl ChainEngine {
     fn u0(&self) -> f64 {
         match &self.kernel {
             Kernel::Elastic(k) => k.displacement()[0],
-            Kernel::Viscous(k) => k.u0(),
+            Kernel::Split(k) => k.u0(),
             Kernel::Implicit(k) => k.displacement()[0],
         }
     }
@@ -209,7 +209,7 @@ impl ChainEngine {
     fn velocities(&self) -> Cow<'_, [f64]> {
         match &self.kernel {
             Kernel::Elastic(k) => Cow::Owned(k.velocities()),
-            Kernel::Viscous(k) => Cow::Owned(k.velocities()),
+            Kernel::Split(k) => Cow::Owned(k.velocities()),
             Kernel::Implicit(k) => Cow::Borrowed(k.velocities()),
         }
     }
@@ -218,7 +218,7 @@ impl ChainEngine {
     fn velocity(&self, j: usize) -> f64 {
         match &self.kernel {
             Kernel::Elastic(k) => k.velocity(j),
-            Kernel::Viscous(k) => k.velocity(j),
+            Kernel::Split(k) => k.velocity(j),
             Kernel::Implicit(k) => k.velocities()[j],
         }
     }
@@ -294,7 +294,7 @@ impl ChainEngine {
                     0.0,
                 )
             }
-            Kernel::Viscous(kernel) => {
+            Kernel::Split(kernel) => {
                 kernel.step(&self.layout.mass, self.wall_force, self.wall_contact)
             }
             Kernel::Implicit(kernel) => {
