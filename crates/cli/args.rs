@@ -124,7 +124,7 @@ pub struct ChainArgs {
     #[arg(long, value_name = "N", default_value_t = 2_000_000_000)]
     pub max_steps: u64,
     /// Which kernel steps a viscous chain (both have the same dt -> 0 limit)
-    #[arg(long, value_enum, default_value_t = ViscousKernelChoice::Implicit)]
+    #[arg(long, value_enum, value_name = "KERNEL", default_value_t = ViscousKernelChoice::Implicit)]
     pub viscous_kernel: ViscousKernelChoice,
 }
 

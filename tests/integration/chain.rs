@@ -234,3 +234,42 @@ fn a_viscous_run_extrapolates_to_the_continuum_by_default() {
     assert_eq!(bad.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&bad.stderr).contains("--target"));
 }
+
+/// The viscous kernel is named in the JSON and the summary: the implicit
+/// one by default, the split one when asked; both give the same chain to
+/// within their step errors (here `3e-5` apart, a viscous bottom at
+/// `N = 200`), and an elastic chain names none.
+#[test]
+fn the_viscous_kernel_is_named_and_chosen_by_flag() {
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "run", "--x", "0.5", "--alpha", "0.3", "--tau1", "0.08", "--n", "200", "--json",
+        ];
+        args.extend(extra);
+        json(&args)
+    };
+    let (implicit, split) = (run(&[]), run(&["--viscous-kernel", "split"]));
+    assert_eq!(implicit["viscous_kernel"], "implicit");
+    assert_eq!(split["viscous_kernel"], "split");
+    let gap =
+        (implicit["restitution"].as_f64().unwrap() - split["restitution"].as_f64().unwrap()).abs();
+    assert!(gap > 0.0 && gap < 3e-5, "{gap}");
+    let elastic = json(&[
+        "run", "--x", "0.5", "--alpha", "0.3", "--engine", "chain", "--n", "200", "--json",
+    ]);
+    assert!(elastic.get("viscous_kernel").is_none(), "{elastic}");
+    assert_input_error(
+        &[
+            "run",
+            "--x",
+            "0.5",
+            "--alpha",
+            "0.3",
+            "--tau1",
+            "0.08",
+            "--viscous-kernel",
+            "sticky",
+        ],
+        "possible values: implicit, split",
+    );
+}
