@@ -150,7 +150,7 @@ impl ChainEngine {
     /// True when the dashpot kernel runs; an elastic scene never does any
     /// dashpot work.
     pub fn uses_dashpots(&self) -> bool {
-        matches!(self.kernel, Kernel::Split(_) | Kernel::Implicit(_))
+        self.viscous_kernel().is_some()
     }
 
     /// How the rod was mapped onto masses.
@@ -286,25 +286,29 @@ impl ChainEngine {
     pub fn step(&mut self) -> Result<Option<StopReason>, ChainError> {
         let dt = self.dt;
         let u0_old = self.u0();
-        let (force, wall_impulse) = match &mut self.kernel {
+        // each kernel's wall impulse for the step: the trapezoid on the wall
+        // spring (plus the split kernel's dashpot impulse), or the implicit
+        // kernel's stage quadrature
+        let wall_force = self.wall_force;
+        let trapezoid = |force: f64| 0.5 * dt * (wall_force + force);
+        let spring_force = |u0: f64| -self.layout.stiffness[0] * u0.min(0.0);
+        let (force, step_impulse) = match &mut self.kernel {
             Kernel::Elastic(kernel) => {
                 kernel.step();
-                (
-                    -self.layout.stiffness[0] * kernel.displacement()[0].min(0.0),
-                    0.0,
-                )
+                let force = spring_force(kernel.displacement()[0]);
+                (force, trapezoid(force))
             }
             Kernel::Split(kernel) => {
-                kernel.step(&self.layout.mass, self.wall_force, self.wall_contact)
+                let (force, dashpot) =
+                    kernel.step(&self.layout.mass, wall_force, self.wall_contact);
+                (force, trapezoid(force) + dashpot)
             }
             Kernel::Implicit(kernel) => {
-                // the stages' impulse in place of the trapezoid's
                 let impulse = kernel.step();
-                let force = -self.layout.stiffness[0] * kernel.displacement()[0].min(0.0);
-                (force, impulse - 0.5 * dt * (self.wall_force + force))
+                (spring_force(kernel.displacement()[0]), impulse)
             }
         };
-        self.impulse += 0.5 * dt * (self.wall_force + force) + wall_impulse;
+        self.impulse += step_impulse;
         self.wall_force = force;
         self.t += dt;
         self.steps += 1;

@@ -90,9 +90,8 @@ impl ImplicitChain {
     pub(crate) fn new(layout: &ChainLayout, dt: f64, impact_speed: f64, law: WallContact) -> Self {
         let n = layout.len();
         let lane = lane_length(n);
-        let (k, c) = (&layout.stiffness, &layout.viscosity);
-        let placeholder = Factor::from_bands(&[1.0], &[0.0], &[0.0], 0);
-        let mut chain = Self {
+        let (m, k, c) = (&layout.mass, &layout.stiffness, &layout.viscosity);
+        Self {
             u: vec![0.0; n],
             v: vec![-impact_speed; n],
             mass: layout.mass.clone(),
@@ -101,8 +100,8 @@ impl ImplicitChain {
             second_stage: second_stage(k, c, dt),
             dt,
             unilateral: law == WallContact::Unilateral,
-            free: placeholder.clone(),
-            with_wall: placeholder,
+            free: factor((m, k, c), dt, false, lane),
+            with_wall: factor((m, k, c), dt, true, lane),
             wall_on: true,
             u_next: vec![0.0; n],
             v_next: vec![0.0; n],
@@ -110,27 +109,12 @@ impl ImplicitChain {
             r: vec![0.0; n],
             v1: vec![0.0; n],
             lanes: vec![Quad::ZERO; lane],
-        };
-        chain.free = chain.factor(dt, false, lane);
-        chain.with_wall = chain.factor(dt, true, lane);
-        chain
+        }
     }
 
-    /// `A = M - g h D - g^2 h^2 K` for a step `h`, the wall element on or
-    /// off, factorised in blocks of `lane` masses.
-    fn factor(&self, h: f64, wall: bool, lane: usize) -> Factor {
-        let n = self.mass.len();
-        let (gh, g2h2) = (GAMMA * h, GAMMA * GAMMA * h * h);
-        let q = |j: usize| {
-            if (j == 0 && !wall) || j >= n {
-                0.0
-            } else {
-                gh * self.viscosity[j] + g2h2 * self.stiffness[j]
-            }
-        };
-        let diagonal: Vec<f64> = (0..n).map(|i| self.mass[i] + q(i) + q(i + 1)).collect();
-        let off: Vec<f64> = (0..n).map(|i| -q(i + 1)).collect();
-        Factor::from_bands(&diagonal, &off, &vec![0.0; n], lane)
+    /// [`factor`] of this chain, in one piece (a part of a step).
+    fn part_factor(&self, h: f64, wall: bool) -> Factor {
+        factor((&self.mass, &self.stiffness, &self.viscosity), h, wall, 0)
     }
 
     /// Displacements now.
@@ -157,12 +141,12 @@ impl ImplicitChain {
         let (before, after) = (theta * self.dt, (1.0 - theta) * self.dt);
         let mut impulse = 0.0;
         if before > 0.0 {
-            impulse += self.wall_step(before, Some(self.factor(before, self.wall_on, 0)));
+            impulse += self.wall_step(before, Some(self.part_factor(before, self.wall_on)));
             self.accept();
         }
         self.wall_on = !self.wall_on;
         if after > 0.0 {
-            impulse += self.wall_step(after, Some(self.factor(after, self.wall_on, 0)));
+            impulse += self.wall_step(after, Some(self.part_factor(after, self.wall_on)));
             self.accept();
         }
         impulse
@@ -176,7 +160,7 @@ impl ImplicitChain {
         if !(self.unilateral && self.wall_on && impulse < 0.0) {
             return impulse;
         }
-        let free = factor.map(|_| self.factor(h, false, 0));
+        let free = factor.map(|_| self.part_factor(h, false));
         self.sdirk(h, false, free.as_ref());
         0.0
     }
@@ -230,6 +214,24 @@ impl ImplicitChain {
         let wall_force_2 = -(k0 * self.u_next[0] + c0 * self.v_next[0]);
         h * ((1.0 - GAMMA) * wall_force_1 + GAMMA * wall_force_2)
     }
+}
+
+/// `A = M - g h D - g^2 h^2 K` of masses `m`, elements `k`, `c` (element
+/// `j` below mass `j`) for a step `h`, the wall element on or off,
+/// factorised in blocks of `lane` masses.
+fn factor((m, k, c): (&[f64], &[f64], &[f64]), h: f64, wall: bool, lane: usize) -> Factor {
+    let n = m.len();
+    let (gh, g2h2) = (GAMMA * h, GAMMA * GAMMA * h * h);
+    let q = |j: usize| {
+        if (j == 0 && !wall) || j >= n {
+            0.0
+        } else {
+            gh * c[j] + g2h2 * k[j]
+        }
+    };
+    let diagonal: Vec<f64> = (0..n).map(|i| m[i] + q(i) + q(i + 1)).collect();
+    let off: Vec<f64> = (0..n).map(|i| -q(i + 1)).collect();
+    Factor::from_bands(&diagonal, &off, &vec![0.0; n], lane)
 }
 
 /// `c_j + 2 g h k_j`.

@@ -12,7 +12,7 @@
 
 mod common;
 
-use common::{homogeneous_under, viscous_bilayer};
+use common::{gap, homogeneous_under, viscous_bilayer};
 use impact_chain::{ChainConfig, ChainEngine, ChainLayout, ChainStop, ViscousKernel};
 use impact_model::{Rod, WallContact};
 
@@ -153,15 +153,6 @@ impl Plain {
             self.impulse += self.wall_step((1.0 - theta) * dt);
         }
     }
-}
-
-/// Largest `|x - y|` against the largest `|y|`.
-fn gap(x: &[f64], y: &[f64]) -> f64 {
-    let scale = y.iter().fold(0.0f64, |s, y| s.max(y.abs()));
-    x.iter()
-        .zip(y)
-        .fold(0.0f64, |s, (x, y)| s.max((x - y).abs()))
-        / scale
 }
 
 fn cases(law: WallContact) -> Vec<(&'static str, Rod)> {

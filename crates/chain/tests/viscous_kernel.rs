@@ -253,15 +253,6 @@ fn cases(law: WallContact) -> Vec<(&'static str, Rod)> {
     ]
 }
 
-/// Largest `|x - y|` against the largest `|y|`.
-fn gap(x: &[f64], y: &[f64]) -> f64 {
-    let scale = y.iter().fold(0.0f64, |s, y| s.max(y.abs()));
-    x.iter()
-        .zip(y)
-        .fold(0.0f64, |s, (x, y)| s.max((x - y).abs()))
-        / scale
-}
-
 #[test]
 fn positions_are_the_plain_chains_over_many_steps() {
     for law in [WallContact::Paper, WallContact::Unilateral] {

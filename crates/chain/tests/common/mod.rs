@@ -160,3 +160,12 @@ impl PlainBeeman {
         }
     }
 }
+
+/// Largest `|x - y|` against the largest `|y|`.
+pub fn gap(x: &[f64], y: &[f64]) -> f64 {
+    let scale = y.iter().fold(0.0f64, |s, y| s.max(y.abs()));
+    x.iter()
+        .zip(y)
+        .fold(0.0f64, |s, (x, y)| s.max((x - y).abs()))
+        / scale
+}
