@@ -189,6 +189,8 @@ pub struct Tracer<R: Real> {
     folded_reflections: u64,
     /// Boundary events advanced in closed form by leaps.
     pub(crate) leaped: u64,
+    /// What leaps did: phases advanced and lattice cells filled.
+    pub(crate) leap_work: u64,
     /// Per layer: no leap before this time (a wall decision is due first).
     pub(crate) leap_after: Vec<R>,
     /// Lattice deposits a leap gathers before placing them: (lane, at, d).
@@ -264,7 +266,15 @@ impl<R: Real> Tracer<R> {
             })
             .collect();
         let n = layers.len();
-        let fold = !config.record.fronts;
+        // The top's lanes fold into one (its reflections carried by the
+        // fronts, no events at the free end), except where fronts are
+        // recorded and where a merged run may leap a fast top (a folded
+        // lane is not leapt, see `leap`): a top ringing a million times
+        // under a slow layer otherwise takes the loop a million steps.
+        let fast_top = n >= 2
+            && scaled[n - 1].transit_time * crate::leap::LEAST_TRANSITS
+                < scaled[n - 2].transit_time;
+        let fold = !(config.record.fronts || (merged && fast_top));
         let mut lanes: Vec<Lane<R>> = scaled
             .iter()
             .enumerate()
@@ -325,6 +335,7 @@ impl<R: Real> Tracer<R> {
             events: 0,
             folded_reflections: 0,
             leaped: 0,
+            leap_work: 0,
             leap_after: vec![R::neg_infinity(); n],
             deposits: Vec::new(),
             sums_memo: Vec::new(),
@@ -367,9 +378,12 @@ impl<R: Real> Tracer<R> {
         self.events + self.folded_reflections + self.pending_reflections() + self.leaped
     }
 
-    /// Iterations of the event loop so far: the run's work.
+    /// The run's work so far: iterations of the event loop, plus what
+    /// leaps did in their stead (a phase advanced, a lattice cell filled).
+    /// A leap counts as one iteration but can fill thousands of cells: a
+    /// budget of iterations alone let merged ladders refine far past it.
     pub fn steps(&self) -> u64 {
-        self.events
+        self.events + self.leap_work
     }
 
     /// Boundary events advanced in closed form (by leaps over quiet layers).

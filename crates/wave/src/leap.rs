@@ -31,7 +31,7 @@ use crate::real::Real;
 use crate::wall::ContactState;
 
 /// Leaps shorter than this many transits of the layer are not worth it.
-const LEAST_TRANSITS: f64 = 8.0;
+pub(crate) const LEAST_TRANSITS: f64 = 8.0;
 
 /// A front ringing in the leaping layer.
 #[derive(Debug, Clone, Copy)]
@@ -223,18 +223,16 @@ impl<R: Real> Tracer<R> {
         if !self.merged || self.record.fronts || n < 2 {
             return Ok(None);
         }
-        let top = i == n - 1;
-        if top {
-            // A fast top layer (its lanes folded) is not leapt: leaping it
-            // was found to gain energy (e = 1.33 on a four-layer rod with a
-            // fast top, `tests/finishes.rs`); its lattice rings step by step.
-            return Ok(None);
-        }
         let up = Lane::<R>::index(i, Direction::Up);
         let t = self.now;
-        if top != self.lanes[up].folded || t < self.leap_after[i] {
+        // A folded top lane is not leapt: leaping it was found to gain
+        // energy (e = 1.33 on a four-layer rod with a fast top,
+        // `tests/finishes.rs`). A merged run does not fold a fast top (see
+        // `Tracer::new`): it leaps as any layer, its free end reflecting.
+        if self.lanes[up].folded || t < self.leap_after[i] {
             return Ok(None);
         }
+        let has_above = i + 1 < n;
         let ti = self.lanes[up].transit;
         let period = ti + ti;
         // the quiet window: until something arrives from outside, or the
@@ -248,7 +246,7 @@ impl<R: Real> Tracer<R> {
         if i > 0 {
             bound(self.lanes[Lane::<R>::index(i - 1, Direction::Up)].head_arrival());
         }
-        if !top && let Some(l) = self.from_above[i + 1] {
+        if has_above && let Some(l) = self.from_above[i + 1] {
             bound(self.lanes[l].head_arrival());
         }
         // (a landing is the leap's own business: found in closed form below)
@@ -261,7 +259,7 @@ impl<R: Real> Tracer<R> {
             let below = self.lanes[Lane::<R>::index(i - 1, Direction::Up)].transit;
             bound(Some(t + below + below));
         }
-        if !top {
+        if has_above {
             let above = self.lanes[Lane::<R>::index(i + 1, Direction::Up)].transit;
             bound(Some(t + above + above));
         }
@@ -329,26 +327,14 @@ impl<R: Real> Tracer<R> {
                 fronts.1.push(self.front(p.tau - ti, p.amp));
                 continue;
             }
-            // a folded top lane has no events at the top: its fronts carry
-            // the reflection with them
-            let nt = if top {
-                0
-            } else {
-                count_before(p.tau + ti, period, horizon)
-                    .min(nb)
-                    .min(life_up)
-            };
-            events += if top { 2 * nb } else { nb + nt };
+            let nt = count_before(p.tau + ti, period, horizon)
+                .min(nb)
+                .min(life_up);
+            events += nb + nt;
             bottom_arrivals.push((p.tau, p.amp, nb));
-            let (s0_b, _, _) = self.sums_cached(q, nb);
             let (s0_t, _, _) = self.sums_cached(q, nt);
             up_sum += ends.bottom * p.amp * self.sums_cached(q, nb.min(life_up)).0;
-            if top {
-                // a folded lane's return is the top's reflection coming back
-                down_sum += p.amp * s0_b;
-            } else {
-                down_sum += p.amp * q * s0_t;
-            }
+            down_sum += p.amp * q * s0_t;
             if let Some((lane, c)) = ends.below {
                 self.emit(
                     lane,
@@ -377,7 +363,7 @@ impl<R: Real> Tracer<R> {
             let last = p.tau + R::of((nb - 1) as f64) * period;
             let arriving = p.amp * pow(q, nb - 1);
             let going_up = ends.bottom * arriving;
-            if nt == nb && !top {
+            if nt == nb {
                 let back = q * arriving;
                 if back.abs() < thr {
                     self.drop_front(i, last + ti, back);
@@ -394,6 +380,7 @@ impl<R: Real> Tracer<R> {
             self.wall_after(&bottom_arrivals, q, period);
             self.schedule_landing()?;
         }
+        self.leap_work += phases.len() as u64;
         self.up_base[i] += up_sum;
         self.down_base[i] += down_sum;
         self.place_deposits()?;
@@ -451,18 +438,8 @@ impl<R: Real> Tracer<R> {
 
     /// The fronts of layer `i` as phases.
     fn phases(&self, i: usize, ti: R, ends: Ends<R>) -> Vec<Phase<R>> {
+        // (a folded lane is never leapt)
         let up = &self.lanes[Lane::<R>::index(i, Direction::Up)];
-        if up.folded {
-            return up
-                .fronts()
-                .iter()
-                .map(|f| Phase {
-                    tau: up.arrival_of(f.born),
-                    amp: up.delivered(f.jump),
-                    top: None,
-                })
-                .collect();
-        }
         let down = &self.lanes[Lane::<R>::index(i, Direction::Down)];
         down.fronts()
             .iter()
@@ -700,6 +677,7 @@ impl<R: Real> Tracer<R> {
                 .min(alive)
                 .max(k + 1);
             let len = end - k;
+            self.leap_work += 1;
             let (s0, s1, _) = self.sums_cached(train.q, len);
             let step = self.sums_cached(train.q, len + 1).0 - s0; // q^len
             let jump = first * s0;
