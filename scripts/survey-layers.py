@@ -67,7 +67,7 @@ def main():
         subprocess.run(["cargo", "build", "--release", "--locked", "--quiet"], cwd=ROOT, check=True)
 
     rng = random.Random(args.seed)
-    times, unfinished = [], 0
+    times, unfinished, failed = [], 0, 0
     print(f"rod  layers  ratio      seconds       events  e             bound")
     with tempfile.TemporaryDirectory(prefix="impact-survey-") as work:
         for k in range(args.rods):
@@ -85,11 +85,12 @@ def main():
                 print(f"{k:3d}  {len(transits):6d}  {ratio:9.1e}  over {args.timeout:.0f} s (stopped)", flush=True)
                 continue
             seconds = time.perf_counter() - start
-            times.append(seconds)
             if run.returncode != 0:
+                failed += 1
                 print(f"{k:3d}  {len(transits):6d}  {ratio:9.1e}  {seconds:7.2f}  exit {run.returncode}: "
                       f"{run.stderr.strip().splitlines()[-1] if run.stderr.strip() else ''}", flush=True)
                 continue
+            times.append(seconds)
             out = json.loads(run.stdout)
             print(f"{k:3d}  {len(transits):6d}  {ratio:9.1e}  {seconds:7.2f}  {out['events']:11d}  "
                   f"{out['restitution']:.10f}  {out['error_bound']:.1e}", flush=True)
@@ -99,8 +100,8 @@ def main():
     print(f"{args.rods} rods (seed {args.seed}, ratios up to 1e{args.speeds:g}); of the {len(times)} "
           f"that finished: median {statistics.median(times) if times else float('nan'):.2f} s, "
           f"90th percentile {p90:.2f} s, largest finished {max(times) if times else float('nan'):.2f} s; "
-          f"{over} over 1 s, {unfinished} not finished within {args.timeout:g} s")
-    return 0
+          f"{over} over 1 s, {unfinished} not finished within {args.timeout:g} s, {failed} failed")
+    return 1 if failed else 0
 
 
 if __name__ == "__main__":

@@ -315,7 +315,7 @@ fn merge_check(levels: &[f64], perturbed: f64, p: f64, l: f64, used: u64) -> Mer
         per_longest: l,
         bound: 2.0 * refined.max(perturbed),
         method: format!(
-            "merged: twice the larger of the refinement estimate ({refined:.1e}: the largest |e - e(2^j as coarse)| / (2^j - 1) over {} coarser lattices) and the difference from the bottom's modulus changed by 1e-12 ({perturbed:.1e}); lattice spacings {p:.3e} of each transit, {l:.1e} of the longest ({used} event-loop steps in all)",
+            "merged: twice the larger of the refinement estimate ({refined:.1e}: the largest |e - e(2^j as coarse)| / (2^j - 1) over {} coarser lattices) and the difference from the bottom's modulus changed by 1e-12 ({perturbed:.1e}); lattice spacings {p:.3e} of each transit, {l:.1e} of the longest ({used} units of work in all: loop iterations, and the fronts and lattice cells of leaps)",
             (levels.len() - 1).min(LOOK_BACK),
         ),
     }
@@ -366,9 +366,11 @@ fn fixed_lattice(
 
 /// Merged runs from [`LADDER_START`] down by halves, each with its
 /// perturbed twin, until the bound is at most `target`, the next level
-/// would not fit the budget of event-loop steps, or the lattice reaches
+/// would not fit the budget of work (see [`WaveEngine::steps`]), or the lattice reaches
 /// [`FINEST`]; at least [`MIN_LEVELS`] levels are run, whatever they cost
-/// (every scene finishes). The finest level is reported.
+/// (every scene finishes). The finest level is reported; if a level cannot
+/// finish within `max_events`, the finest before it is, with what its
+/// comparisons say (two levels at least).
 fn ladder(
     rod: &Rod,
     config: &WaveConfig,
@@ -379,13 +381,29 @@ fn ladder(
     let (mut p, mut l) = LADDER_START;
     let mut used = 0;
     let mut levels = Vec::new();
+    let mut coarser: Option<(WaveEngine, MergeCheck)> = None;
     loop {
         let max = config.max_events;
         let (fine, twin) = rayon::join(
             || run::<f64>(rod, merged_at(config, p, l, max)),
             || run::<f64>(&twin_rod, merged_at(config, p, l, max)),
         );
-        let (fine, twin) = (fine?, twin?);
+        let (fine, twin) = match (fine, twin, coarser) {
+            (Ok(fine), Ok(twin), _) => (fine, twin),
+            // a level past --max-events: the finest level that finished is
+            // reported, if it was checked against a coarser one (every
+            // scene finishes), and the method says on how little
+            (Err(WaveError::EventLimit { .. }), _, Some((engine, mut check)))
+            | (_, Err(WaveError::EventLimit { .. }), Some((engine, mut check))) => {
+                check.method.push_str(&format!(
+                    "; the next level did not finish within {max} events, so the estimate rests on {} level{}",
+                    levels.len(),
+                    if levels.len() == 1 { "" } else { "s" }
+                ));
+                return Ok((engine, check));
+            }
+            (Err(e), _, _) | (_, Err(e), _) => return Err(e),
+        };
         used += fine.steps() + twin.steps();
         levels.push(fine.restitution());
         let perturbed = (fine.restitution() - twin.restitution()).abs();
@@ -407,6 +425,7 @@ fn ladder(
         if done {
             return Ok((fine, check));
         }
+        coarser = (levels.len() >= 2).then_some((fine, check));
         p /= 2.0;
         l /= 2.0;
     }
