@@ -305,6 +305,45 @@ fn a_ladder_cut_short_by_max_events_reports_what_finished() {
     );
 }
 
+/// A fast top over a soft bottom (`t2/t1 = 1/1000`): merged runs no longer
+/// fold the top's lanes, so the top leaps like any layer. The leaps must
+/// happen, and the merged `e` must lie within its bound of the exact one
+/// (which the exact engine reaches here in 6,093 events).
+#[test]
+fn a_fast_top_leaps_within_its_bound_of_the_exact_run() {
+    let rod = scene(&[(1.0, 1.0, 1.0), (0.5, 1e6, 0.5)]);
+    let exact = simulate(
+        &rod,
+        &WaveConfig {
+            resolution: Resolution::Exact,
+            ..WaveConfig::default()
+        },
+    )
+    .unwrap();
+    assert!(exact.error_bound.unwrap() < 1e-10, "{exact:?}");
+    for p in [0.2, 0.1, 0.05] {
+        let config = WaveConfig {
+            resolution: Resolution::Merged {
+                per_transit: p,
+                per_longest: p / 50.0,
+            },
+            ..WaveConfig::default()
+        };
+        let mut engine = impact_wave::WaveEngine::new(&rod, config.clone()).unwrap();
+        engine.run().unwrap();
+        assert!(
+            engine.leaped_events() > 1000,
+            "p {p}: {}",
+            engine.leaped_events()
+        );
+        let merged = simulate(&rod, &config).unwrap();
+        assert_valid(&merged);
+        let d = (merged.restitution - exact.restitution).abs();
+        let bound = merged.error_bound.unwrap();
+        assert!(d > 0.0 && d <= bound, "p {p}: {d:e} > {bound:e}");
+    }
+}
+
 fn scene(layers: &[(f64, f64, f64)]) -> impact_model::Rod {
     impact_model::Scene {
         impact_speed: 1.0,
