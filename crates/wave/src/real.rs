@@ -93,6 +93,9 @@ pub trait Real:
     }
 }
 
+/// Above this every double is an integer (`2^52`).
+const EXACT_INTEGERS: f64 = 4_503_599_627_370_496.0;
+
 impl Real for f64 {
     type Key = OrderedFloat<f64>;
     #[inline(always)]
@@ -120,13 +123,28 @@ impl Real for f64 {
     fn abs(self) -> Self {
         f64::abs(self)
     }
+    /// `f64::floor` compiles to a call into libm on the baseline x86-64
+    /// target (no SSE4.1 `roundsd`): 3 to 6 % of a merged run, whose
+    /// lattice cells are floors. Below `2^52` in magnitude a truncating
+    /// conversion gives the same value (a zero's sign aside).
     #[inline(always)]
     fn floor(self) -> Self {
-        f64::floor(self)
+        if self.abs() < EXACT_INTEGERS {
+            let t = self as i64 as f64;
+            if t > self { t - 1.0 } else { t }
+        } else {
+            f64::floor(self)
+        }
     }
+    /// As [`Real::floor`].
     #[inline(always)]
     fn ceil(self) -> Self {
-        f64::ceil(self)
+        if self.abs() < EXACT_INTEGERS {
+            let t = self as i64 as f64;
+            if t < self { t + 1.0 } else { t }
+        } else {
+            f64::ceil(self)
+        }
     }
     #[inline(always)]
     fn round(self) -> Self {
@@ -310,6 +328,27 @@ impl Real for DoubleDouble {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_fast_floor_and_ceil_are_libms() {
+        let mut values = vec![
+            0.0, 0.5, 1.0, 1.5, 2.0 - 1e-16, 1e15 + 0.5, 4.5e15 - 0.5, 4.6e15, 1e300,
+            f64::MIN_POSITIVE, 1e-300, 0.1, 2.5, 3.0, 123456.789,
+        ];
+        // a seeded sweep over magnitudes, through the lattice's range
+        let mut x = 0.123_456_789_f64;
+        for _ in 0..100_000 {
+            x = (x * 9_301.0 + 0.497).fract();
+            values.push(x * 10f64.powi((x * 40.0) as i32 - 20));
+        }
+        for v in values.iter().flat_map(|&v| [v, -v]) {
+            assert_eq!(<f64 as Real>::floor(v), v.floor(), "{v:e}");
+            assert_eq!(<f64 as Real>::ceil(v), v.ceil(), "{v:e}");
+        }
+        assert!(<f64 as Real>::floor(f64::NAN).is_nan());
+        assert_eq!(<f64 as Real>::floor(f64::INFINITY), f64::INFINITY);
+        assert_eq!(<f64 as Real>::ceil(f64::NEG_INFINITY), f64::NEG_INFINITY);
+    }
 
     #[test]
     fn double_double_keeps_what_double_loses() {
