@@ -136,9 +136,17 @@ pub fn summary(title: &str, o: &Timed<Outcome>) -> String {
         let _ = write!(s, ", n1 = {n1:.6}");
     }
     let _ = writeln!(s, ")");
+    // the error bound is on e; a merged lattice moves the small fronts
+    // that decide a chatter's shortest flights, so its count is its own
+    let merged = o.truncation.is_some_and(|t| t.merged_fronts > 0);
+    let lattice = if merged && o.separations > 1 {
+        "; counted on the merged lattice, not bounded: finer lattices may count otherwise"
+    } else {
+        ""
+    };
     let _ = writeln!(
         s,
-        "  bounces N_b          {}  ({} separation{})",
+        "  bounces N_b          {}  ({} separation{}{lattice})",
         o.bounces,
         o.separations,
         if o.separations == 1 { "" } else { "s" }

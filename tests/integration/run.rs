@@ -100,6 +100,22 @@ fn human_summary_names_the_observables() {
     }
 }
 
+/// The bound is on `e`: a merged run's bounce count is its lattice's (the
+/// steel base under rubber counts 149 to 239 bounces over four lattices
+/// while `e` moves by `5e-6`), and the summary says so; an exact run's
+/// count is the rod's and carries no such words.
+#[test]
+fn a_merged_runs_bounce_count_is_marked_as_the_lattices() {
+    let words = "counted on the merged lattice, not bounded";
+    let merged = impact(&["run", "data/scenes/steel-under-rubber.json"]);
+    assert!(merged.status.success());
+    let text = stdout(&merged);
+    let line = text.lines().find(|l| l.contains("bounces N_b")).unwrap();
+    assert!(line.contains(words), "{line}");
+    let exact = impact(&["run", "data/scenes/fig3c.json"]);
+    assert!(!stdout(&exact).contains(words), "{}", stdout(&exact));
+}
+
 #[test]
 fn wall_trace_is_written_only_when_asked() {
     let (path, _) = writes("trace", "wall.csv", "run --x 0.4 --alpha 0.05 --wall-trace");

@@ -332,8 +332,21 @@ mod tests {
     #[test]
     fn the_fast_floor_and_ceil_are_libms() {
         let mut values = vec![
-            0.0, 0.5, 1.0, 1.5, 2.0 - 1e-16, 1e15 + 0.5, 4.5e15 - 0.5, 4.6e15, 1e300,
-            f64::MIN_POSITIVE, 1e-300, 0.1, 2.5, 3.0, 123456.789,
+            0.0,
+            0.5,
+            1.0,
+            1.5,
+            2.0 - 1e-16,
+            1e15 + 0.5,
+            4.5e15 - 0.5,
+            4.6e15,
+            1e300,
+            f64::MIN_POSITIVE,
+            1e-300,
+            0.1,
+            2.5,
+            3.0,
+            123456.789,
         ];
         // a seeded sweep over magnitudes, through the lattice's range
         let mut x = 0.123_456_789_f64;
