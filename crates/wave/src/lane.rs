@@ -436,14 +436,18 @@ mod tests {
         assert_eq!(lane.target(), 1);
     }
 
-    #[test]
-    fn lattice_deposits_keep_the_jump_and_its_moment() {
-        let rule = MergeRule::Lattice {
+    /// A lattice of quarters keeping one front of a unit jump or more.
+    fn quarter_lattice() -> MergeRule<f64> {
+        MergeRule::Lattice {
             spacing: 0.25,
             keep_above: 1.0,
             keep_at_most: 1,
-        };
-        let mut lane = Lane::new(1, Direction::Down, 2.0, rule);
+        }
+    }
+
+    #[test]
+    fn lattice_deposits_keep_the_jump_and_its_moment() {
+        let mut lane = Lane::new(1, Direction::Down, 2.0, quarter_lattice());
         lane.push(1.1, 0.5, 0);
         lane.push(1.2, -0.25, 1);
         // a large front is kept where it was born
@@ -491,12 +495,7 @@ mod tests {
 
     #[test]
     fn a_leaps_fronts_merge_within_their_lattice_cells() {
-        let rule = MergeRule::Lattice {
-            spacing: 0.25,
-            keep_above: 1.0,
-            keep_at_most: 1,
-        };
-        let mut lane = Lane::new(1, Direction::Up, 2.0, rule);
+        let mut lane = Lane::new(1, Direction::Up, 2.0, quarter_lattice());
         // two born at one instant (once lost by the merge), a cell of
         // three with mixed signs, a large one kept, a lone one
         let given = [

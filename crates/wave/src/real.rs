@@ -124,9 +124,11 @@ impl Real for f64 {
         f64::abs(self)
     }
     /// `f64::floor` compiles to a call into libm on the baseline x86-64
-    /// target (no SSE4.1 `roundsd`): 3 to 6 % of a merged run, whose
-    /// lattice cells are floors. Below `2^52` in magnitude a truncating
-    /// conversion gives the same value (a zero's sign aside).
+    /// target (no SSE4.1 `roundsd`), and a merged run's lattice cells are
+    /// floors (3 to 6 % of its profile samples; inlined, 1.6 % fewer
+    /// instructions on a four-layer rod, callgrind). Below `2^52` in
+    /// magnitude a truncating conversion gives the same value (a zero's
+    /// sign aside).
     #[inline(always)]
     fn floor(self) -> Self {
         if self.abs() < EXACT_INTEGERS {

@@ -396,9 +396,8 @@ fn ladder(
             (Err(WaveError::EventLimit { .. }), _, Some((engine, mut check)))
             | (_, Err(WaveError::EventLimit { .. }), Some((engine, mut check))) => {
                 check.method.push_str(&format!(
-                    "; the next level did not finish within {max} events, so the estimate rests on {} level{}",
-                    levels.len(),
-                    if levels.len() == 1 { "" } else { "s" }
+                    "; the next level did not finish within {max} events, so the estimate rests on {} levels",
+                    levels.len()
                 ));
                 return Ok((engine, check));
             }
