@@ -341,17 +341,32 @@ impl<R: Real> Lane<R> {
         inserted
     }
 
-    /// Adds lattice deposits `(at, d)` in one pass over the lane: the
-    /// deposits of a leap's trains spread over many cells, and placing them
-    /// one by one would walk the lane once each.
-    pub fn place_all(&mut self, mut deposits: Vec<(R, R)>) {
+    /// Adds lattice deposits `(at, d)` (sorted here) in one pass over the
+    /// lane's newest fronts: the deposits of a leap's trains spread over
+    /// many cells, and placing them one by one would walk the lane once
+    /// each. They are births from now on, so they land behind nearly every
+    /// front the lane holds: only the fronts born at or after the first
+    /// deposit are taken out and merged with them (a lattice lane never
+    /// holds two unkept fronts born together, so the older ones would come
+    /// through a merge unchanged; asserted in debug builds). Rebuilding the
+    /// whole lane each time cost a copy of a thousand fronts per leap.
+    pub fn place_all(&mut self, deposits: &mut [(R, R)]) {
         if deposits.is_empty() {
             return;
         }
         deposits.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap_or(std::cmp::Ordering::Equal));
-        let old = std::mem::take(&mut self.fronts);
-        let mut merged = VecDeque::with_capacity(old.len() + deposits.len());
-        let mut news = deposits.into_iter().peekable();
+        let first = deposits[0].0;
+        let older = self.fronts.partition_point(|f| f.born < first);
+        debug_assert!(
+            self.fronts
+                .range(..older)
+                .zip(self.fronts.range(..older).skip(1))
+                .all(|(a, b)| a.born != b.born || a.kept || b.kept),
+            "a lattice lane holds two unkept fronts born together"
+        );
+        let newer: Vec<Front<R>> = self.fronts.drain(older..).collect();
+        let merged = &mut self.fronts;
+        let mut news = deposits.iter().copied().peekable();
         let deposit = |merged: &mut VecDeque<Front<R>>, at: R, d: R| match merged.back_mut() {
             Some(last) if last.born == at && !last.kept => last.jump += d,
             _ => merged.push_back(Front {
@@ -361,7 +376,7 @@ impl<R: Real> Lane<R> {
                 kept: false,
             }),
         };
-        for f in old {
+        for f in newer {
             while let Some(&(at, d)) = news.peek() {
                 if at > f.born {
                     break;
@@ -369,7 +384,7 @@ impl<R: Real> Lane<R> {
                 if at == f.born && !f.kept {
                     break;
                 }
-                deposit(&mut merged, at, d);
+                deposit(merged, at, d);
                 news.next();
             }
             match merged.back_mut() {
@@ -378,9 +393,8 @@ impl<R: Real> Lane<R> {
             }
         }
         for (at, d) in news {
-            deposit(&mut merged, at, d);
+            deposit(merged, at, d);
         }
-        self.fronts = merged;
         self.refresh_head();
     }
 

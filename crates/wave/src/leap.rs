@@ -705,19 +705,25 @@ impl<R: Real> Tracer<R> {
     /// Places the deposits gathered by `emit` into their lanes, one pass a
     /// lane, and puts the lanes' heads in the queue.
     fn place_deposits(&mut self) -> Result<(), WaveError> {
-        let mut all = std::mem::take(&mut self.deposits);
-        all.sort_by_key(|d| d.0);
-        let mut start = 0;
-        while start < all.len() {
-            let lane = all[start].0;
-            let end = start + all[start..].iter().take_while(|d| d.0 == lane).count();
-            let batch = all[start..end].iter().map(|d| (d.1, d.2)).collect();
-            self.lanes[lane].place_all(batch);
-            self.reschedule_layer(self.lanes[lane].layer)?;
-            start = end;
+        let all = std::mem::take(&mut self.deposits);
+        // lane by lane in increasing order, each lane's deposits in the
+        // order they were gathered (a leap feeds two lanes at most)
+        let mut lanes: Vec<usize> = Vec::with_capacity(2);
+        for &(lane, _, _) in &all {
+            if !lanes.contains(&lane) {
+                lanes.push(lane);
+            }
         }
-        all.clear();
+        lanes.sort_unstable();
+        let mut batch = Vec::with_capacity(all.len());
+        for lane in lanes {
+            batch.clear();
+            batch.extend(all.iter().filter(|d| d.0 == lane).map(|d| (d.1, d.2)));
+            self.lanes[lane].place_all(&mut batch);
+            self.reschedule_layer(self.lanes[lane].layer)?;
+        }
         self.deposits = all;
+        self.deposits.clear();
         Ok(())
     }
 
