@@ -44,7 +44,7 @@ pub enum ViscousKernel {
     #[default]
     Implicit,
     /// A Beeman step of the springs, then an SDIRK2 step of the dashpots
-    /// (`crate::viscous`): four to five times faster, but up to `6e-4`
+    /// (`crate::viscous`): three to four times faster, but up to `6e-4`
     /// from the limit where a dashpot is stiff against the step.
     Split,
 }

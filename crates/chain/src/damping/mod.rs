@@ -496,6 +496,66 @@ mod tests {
         println!("largest gap {worst:.1e} (velocities of size 1)");
     }
 
+    /// The tridiagonal solve of the implicit chain (`A = M - g h D - g^2
+    /// h^2 K`, its blocked sweeps two masses a link) against Gaussian
+    /// elimination on the dense matrix: odd and even block lengths (the
+    /// sweeps' single last steps), blocks of 2 and 3, a rest above the
+    /// blocks or none, soft to stiff couplings (`q / m` from `1e-3` to
+    /// `1e4`, where the tails run long), to `1e-12` of the solution's size.
+    #[test]
+    fn the_tridiagonal_sweeps_in_pairs_are_gaussian_elimination() {
+        for (n, q) in [
+            (8, 1e-3),
+            (9, 0.5),
+            (64, 3.0),
+            (257, 40.0),
+            (300, 1e4),
+            (301, 0.2),
+        ] {
+            let mass: Vec<f64> = (0..n)
+                .map(|i| 1.0 + ((i * 37) % 11) as f64 / 10.0)
+                .collect();
+            let coupling: Vec<f64> = (0..n)
+                .map(|i| q * (0.5 + ((i * 53) % 7) as f64 / 7.0))
+                .collect();
+            // element j below mass j (element 0 the wall's), none above the top
+            let above = |i: usize| if i + 1 < n { coupling[i + 1] } else { 0.0 };
+            let diagonal: Vec<f64> = (0..n).map(|i| mass[i] + coupling[i] + above(i)).collect();
+            let off: Vec<f64> = (0..n).map(|i| -above(i)).collect();
+            let dense: Vec<Vec<f64>> = (0..n)
+                .map(|i| {
+                    (0..n)
+                        .map(|j| match j {
+                            _ if j == i => diagonal[i],
+                            _ if j == i + 1 => off[i],
+                            _ if j + 1 == i => off[j],
+                            _ => 0.0,
+                        })
+                        .collect()
+                })
+                .collect();
+            let r: Vec<f64> = (0..n)
+                .map(|i| ((i * 7919) % 101) as f64 / 50.0 - 1.0)
+                .collect();
+            let exact = dense_solve(dense, r.clone());
+            let size = exact.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+            for lane in [0, 2, 3, 61, 64, n / LANES] {
+                if lane != 0 && (lane < 2 || LANES * lane > n) {
+                    continue;
+                }
+                let factor = Factor::from_bands(&diagonal, &off, &vec![0.0; n], lane);
+                let (mut rhs, mut t, mut x) = (r.clone(), vec![Quad::ZERO; lane], vec![0.0; n]);
+                factor.solve_into(&mut rhs, &mut t, &mut x);
+                for (i, (a, b)) in x.iter().zip(&exact).enumerate() {
+                    assert!(
+                        (a - b).abs() <= 1e-12 * size,
+                        "n {n}, q {q}, lane {lane}, mass {i}: {a} vs {b}"
+                    );
+                }
+            }
+        }
+    }
+
     #[test]
     fn never_adds_kinetic_energy_and_keeps_momentum_off_the_wall() {
         // 50 unit masses, initial velocities spread over [-6, 6]
