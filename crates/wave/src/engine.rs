@@ -8,7 +8,7 @@
 
 use crate::config::{Record, Resolution, StopRule, WaveConfig};
 use crate::error::WaveError;
-use crate::lane::{Direction, Lane, MergeRule, Pushed};
+use crate::lane::{Direction, Lane, MergeRule, Pushed, Window};
 use crate::queue::{EventInPast, EventKey, EventQueue};
 use crate::real::Real;
 use crate::record::{FrontRecord, Recording, WallSample};
@@ -17,6 +17,12 @@ use impact_model::escape::{EscapeBound, Margin, internal_energy};
 use impact_model::{
     ContactHistory, EngineKind, InterfaceCoefficients, Outcome, Rod, StopReason, Truncation, Units,
 };
+
+/// Instants this many ulps apart (of the time, plus the shortest transit)
+/// are one: rounding alone could have split them (see [`Window`]). A gap
+/// this small is rounding, not a use of the simultaneity window: the error
+/// estimate's rounding part covers it.
+pub(crate) const TIE_ULPS: f64 = 64.0;
 
 /// The merge rule of a lane, from its layer's transit time and wave speed.
 type LaneRule<R> = dyn Fn(f64, f64) -> MergeRule<R>;
@@ -171,9 +177,8 @@ pub struct Tracer<R: Real> {
     pub(crate) mass: R,
     /// The escape bound of the rod (DESIGN.md §2), in the run's arithmetic.
     escape: EscapeBound<R>,
-    pub(crate) simultaneity: R,
-    /// The shortest transit time: the scale of rounding in a time.
-    simultaneity_scale: R,
+    /// Which instants are one (see [`Window`]).
+    pub(crate) window: Window<R>,
     pub(crate) grazing_strain: R,
     pub(crate) merged: bool,
     max_events: u64,
@@ -234,11 +239,14 @@ impl<R: Real> Tracer<R> {
             .fold(f64::INFINITY, f64::min);
         let t_max = scaled.iter().map(|l| l.transit_time).fold(0.0, f64::max);
         let simultaneity = of(config.simultaneity) * of(t_min);
+        let window = Window {
+            fixed: simultaneity,
+            ulps: of(TIE_ULPS * f64::EPSILON),
+            scale: of(t_min),
+        };
         let (rule, merged): (Box<LaneRule<R>>, bool) = match config.resolution {
             Resolution::Exact | Resolution::Auto { .. } => (
-                Box::new(move |_, _| MergeRule::Simultaneous {
-                    window: simultaneity,
-                }),
+                Box::new(move |_, _| MergeRule::Simultaneous { window }),
                 false,
             ),
             Resolution::Merged {
@@ -318,8 +326,7 @@ impl<R: Real> Tracer<R> {
             impact_speed: vb,
             mass: of(rod.scaled_mass()),
             escape: EscapeBound::new(of(rod.scaled_compliance_moment()), of(rod.scaled_mass())),
-            simultaneity,
-            simultaneity_scale: of(t_min),
+            window,
             grazing_strain: of(config.grazing_tolerance) * vb / c0,
             merged,
             max_events: config.max_events,
@@ -605,8 +612,12 @@ impl<R: Real> Tracer<R> {
     /// transit): a tie that rounding split is no use of the tolerance.
     #[cold]
     fn note_combined(&mut self, gap: R) {
-        let ulps = R::of(64.0 * f64::EPSILON);
-        if gap > ulps * (self.now.abs() + self.simultaneity_scale) {
+        // the window's rounding part, and the rounding of the deadline
+        // `t + window` itself (an ulp of `t`)
+        let w = self.window;
+        let now = self.now.abs();
+        let rounding = w.ulps * (now + w.scale) + R::of(2.0 * f64::EPSILON) * now;
+        if gap > rounding {
             self.decisions.within_tolerance += 1;
         }
     }
@@ -732,7 +743,7 @@ impl<R: Real> Tracer<R> {
                 if wall_lane.is_some_and(|i| {
                     self.lanes[i]
                         .head_arrival()
-                        .is_some_and(|a| a <= t + self.simultaneity)
+                        .is_some_and(|a| a <= t + self.window.at(t))
                 }) {
                     // A front reaches the bottom as it lands: one event. It
                     // reflects off the still-free bottom first; if the bottom
@@ -805,10 +816,11 @@ impl<R: Real> Tracer<R> {
         self.boundary_event(0, self.now)
     }
 
-    /// All fronts reaching boundary `b` by `t + simultaneity`, as one event.
+    /// All fronts reaching boundary `b` within the simultaneity window of
+    /// `t`, as one event.
     #[inline(always)]
     fn boundary_event(&mut self, b: usize, t: R) -> Result<StepKind, WaveError> {
-        let deadline = t + self.simultaneity;
+        let deadline = t + self.window.at(t);
         let n = self.layers.len();
         let mut parents = [0u32; 2];
         let mut count = 0;
@@ -922,7 +934,7 @@ impl<R: Real> Tracer<R> {
         }
         if let Some(at) = EscapeBound::escape_time(t, reach, rise, v) {
             self.queue
-                .schedule(EventKey::Escape, at + self.simultaneity, self.now)
+                .schedule(EventKey::Escape, at + self.window.at(at), self.now)
                 .map_err(past)?;
         }
         Ok(false)

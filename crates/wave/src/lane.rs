@@ -41,9 +41,9 @@ pub struct Front<R> {
 /// How fronts born close together in a lane are merged.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum MergeRule<R> {
-    /// Fronts born within `window` (the simultaneity window) of the newest
-    /// are one front: they started at the same instant.
-    Simultaneous { window: R },
+    /// Fronts born within the simultaneity window (at their birth) of the
+    /// newest are one front: they started at the same instant.
+    Simultaneous { window: Window<R> },
     /// Fronts are deposited on the lattice of birth times `k * spacing`,
     /// each split between the two nearest points in the proportions that
     /// keep the jump and its first moment `d t` exact: the lane's momentum
@@ -57,6 +57,40 @@ pub enum MergeRule<R> {
         keep_above: R,
         keep_at_most: usize,
     },
+}
+
+/// How close two instants must be to be one: within `fixed` (the
+/// configured simultaneity window), or within `ulps` of the instant and of
+/// the shortest transit `scale` (`ulps (|t| + scale)`), where rounding
+/// alone could have split a true tie. The second part grows with the time,
+/// as the rounding of summed transit times does: a fixed window small
+/// enough to leave real near-ties apart early splits true ties late in a
+/// long run (and their fronts multiply); one wide enough for late ties
+/// combines real near-ties early, which the error estimate must then
+/// measure by a second run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Window<R> {
+    pub fixed: R,
+    pub ulps: R,
+    pub scale: R,
+}
+
+impl<R: Real> Window<R> {
+    /// A window of `fixed` alone.
+    #[cfg(test)]
+    pub fn fixed(fixed: f64) -> Self {
+        Self {
+            fixed: R::of(fixed),
+            ulps: R::zero(),
+            scale: R::zero(),
+        }
+    }
+
+    /// The window at instant `t`.
+    #[inline(always)]
+    pub fn at(&self, t: R) -> R {
+        self.fixed.max(self.ulps * (t.abs() + self.scale))
+    }
 }
 
 /// Fronts of one layer and direction, oldest first.
@@ -260,7 +294,7 @@ impl<R: Real> Lane<R> {
             MergeRule::Simultaneous { window } => {
                 let len = self.fronts.len();
                 if let Some(last) = self.fronts.back_mut()
-                    && born - last.born <= window
+                    && born - last.born <= window.at(born)
                 {
                     last.jump += jump;
                     return Pushed::Merged {
@@ -430,13 +464,50 @@ impl<R: Real> Lane<R> {
 mod tests {
     use super::*;
 
+    /// The window of rounding grows with the instant: late in a long run
+    /// two births a few ulps apart (a tie that rounding split) are one,
+    /// where a fixed window of a fraction of the shortest transit, small
+    /// enough to leave near-ties early in the run apart, would split them.
+    #[test]
+    fn the_window_of_rounding_grows_with_the_time() {
+        let rounding = Window {
+            fixed: 0.0,
+            ulps: 64.0 * f64::EPSILON,
+            scale: 1.0,
+        };
+        let late = 1e6;
+        let tie = late + 8.0 * late * f64::EPSILON;
+        assert!(tie - late <= rounding.at(tie));
+        assert!(tie - late > Window::<f64>::fixed(1e-12).at(tie));
+        // early, arrivals 1e-12 of the shortest transit apart stay apart
+        assert!(1e-12 > rounding.at(1.0));
+        // and a configured window adds to it
+        let wide = Window {
+            fixed: 1e-9,
+            ..rounding
+        };
+        assert_eq!(wide.at(1.0), 1e-9);
+        assert_eq!(wide.at(late), rounding.at(late));
+        let mut lane = Lane::new(
+            0,
+            Direction::Up,
+            2.0,
+            MergeRule::Simultaneous { window: rounding },
+        );
+        lane.push(late, 0.5, 0);
+        assert!(matches!(lane.push(tie, 0.25, 1), Pushed::Merged { .. }));
+        assert_eq!(lane.fronts().len(), 1);
+    }
+
     #[test]
     fn fronts_born_together_merge() {
         let mut lane = Lane::new(
             0,
             Direction::Up,
             2.0,
-            MergeRule::Simultaneous { window: 1e-9 },
+            MergeRule::Simultaneous {
+                window: Window::fixed(1e-9),
+            },
         );
         assert_eq!(lane.push(1.0, 0.5, 0), Pushed::New { was_empty: true });
         assert!(matches!(
@@ -485,7 +556,9 @@ mod tests {
             2,
             Direction::Up,
             0.75,
-            MergeRule::Simultaneous { window: 0.0 },
+            MergeRule::Simultaneous {
+                window: Window::fixed(0.0),
+            },
         );
         lane.folded = true;
         lane.push(1.0, 0.5, 0);

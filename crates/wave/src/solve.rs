@@ -186,9 +186,9 @@ pub fn solve(rod: &Rod, config: &WaveConfig) -> Result<Solution, WaveError> {
 }
 
 /// How much tighter the tolerances of the rerun that measures their effect
-/// are. Not much tighter: the simultaneity window must stay above the
-/// rounding of the times (`2^-52 t`, `1.3e-12 t_min` at the hard corner),
-/// or the rerun splits true ties and measures its own rounding.
+/// are: the configured simultaneity window and the grazing tolerance. The
+/// window's rounding part stays (`lane::Window`), so the rerun cannot split
+/// true ties and measure its own rounding.
 const TIGHTER: f64 = 1e-2;
 
 /// What the engine's tolerances did to `e` in an exact run that used them:
