@@ -387,6 +387,61 @@ fn a_fast_top_leaps_within_its_bound_of_the_exact_run() {
     }
 }
 
+/// Rods whose layers all share one transit time (and one where they go
+/// 1 : 2 : 3) are ties everywhere: every path of a given length arrives at
+/// once in real numbers, at times a few ulps apart in doubles. Run long
+/// (200 longest transits, far past the escape), the window of rounding
+/// must combine every one of them as the first build's `1e-9` of the
+/// shortest transit did: the same events, front for front, and the same
+/// `e`. A tie it split would add fronts, and they would multiply (with
+/// no rounding part in the window, the first rod takes 787 events instead
+/// of 398).
+#[test]
+fn ties_stay_ties_over_long_runs_in_the_window_of_rounding() {
+    // (transit, modulus, density): the length `t sqrt(E / rho)`, so the
+    // transit times the engine computes, `L / c`, differ from `t` and from
+    // each other by an ulp or so
+    let rod = |layers: &[(f64, f64, f64)]| {
+        let with_lengths: Vec<_> = layers
+            .iter()
+            .map(|&(t, e, rho): &(f64, f64, f64)| (t * (e / rho).sqrt(), e, rho))
+            .collect();
+        scene(&with_lengths)
+    };
+    let rods = [
+        rod(&[(0.1, 2.0, 1.0), (0.1, 0.3, 3.0), (0.1, 0.07, 0.1)]),
+        rod(&[
+            (0.3, 0.9, 10.0),
+            (0.3, 1.7, 0.1),
+            (0.3, 3.0, 2.0),
+            (0.3, 0.05, 0.1),
+        ]),
+        rod(&[(0.1, 1.0, 1.0), (0.2, 0.5, 2.0), (0.3, 5.0, 7.0)]),
+    ];
+    for (i, rod) in rods.iter().enumerate() {
+        let long = WaveConfig {
+            stop: impact_wave::StopRule::Horizon { factor: 200.0 },
+            ..WaveConfig::default()
+        };
+        let fixed = WaveConfig {
+            simultaneity: 1e-9,
+            ..long.clone()
+        };
+        let (a, b) = (
+            simulate(rod, &long).unwrap(),
+            simulate(rod, &fixed).unwrap(),
+        );
+        assert!(
+            a.events.unwrap() > 300,
+            "rod {i}: {} events",
+            a.events.unwrap()
+        );
+        assert_eq!(a.events, b.events, "rod {i}");
+        assert_eq!(a.restitution, b.restitution, "rod {i}");
+        assert_eq!(a.separations, b.separations, "rod {i}");
+    }
+}
+
 fn scene(layers: &[(f64, f64, f64)]) -> impact_model::Rod {
     impact_model::Scene {
         impact_speed: 1.0,
