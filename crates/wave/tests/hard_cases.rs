@@ -86,14 +86,7 @@ fn a_tie_is_combined_by_the_window_of_rounding_alone() {
             .method
             .contains("tolerances")
     );
-    let wide = simulate(
-        &rod(x, 0.3),
-        &WaveConfig {
-            simultaneity: 1e-9,
-            ..WaveConfig::default()
-        },
-    )
-    .unwrap();
+    let wide = simulate(&rod(x, 0.3), &first_window()).unwrap();
     assert!((wide.restitution - o.restitution).abs() < 1e-12);
     assert_eq!(wide.separations, o.separations);
 }
@@ -111,14 +104,7 @@ fn the_hardest_points_combine_nothing_beyond_rounding() {
         let solution = solve(&rod(x, 0.005), &WaveConfig::default()).unwrap();
         assert_eq!(solution.engine.decisions().within_tolerance, 0, "x = {x}");
         let o = solution.outcome;
-        let first = simulate(
-            &rod(x, 0.005),
-            &WaveConfig {
-                simultaneity: 1e-9,
-                ..WaveConfig::default()
-            },
-        )
-        .unwrap();
+        let first = simulate(&rod(x, 0.005), &first_window()).unwrap();
         let bound = first.error_estimate.as_ref().unwrap().bound;
         assert!(
             (o.restitution - first.restitution).abs() <= bound,
@@ -424,8 +410,8 @@ fn ties_stay_ties_over_long_runs_in_the_window_of_rounding() {
             ..WaveConfig::default()
         };
         let fixed = WaveConfig {
-            simultaneity: 1e-9,
-            ..long.clone()
+            stop: long.stop,
+            ..first_window()
         };
         let (a, b) = (
             simulate(rod, &long).unwrap(),
@@ -439,6 +425,15 @@ fn ties_stay_ties_over_long_runs_in_the_window_of_rounding() {
         assert_eq!(a.events, b.events, "rod {i}");
         assert_eq!(a.restitution, b.restitution, "rod {i}");
         assert_eq!(a.separations, b.separations, "rod {i}");
+    }
+}
+
+/// The first build's simultaneity window, `1e-9` of the shortest transit
+/// (added to the window of rounding).
+fn first_window() -> WaveConfig {
+    WaveConfig {
+        simultaneity: 1e-9,
+        ..WaveConfig::default()
     }
 }
 
