@@ -8,11 +8,12 @@
 
 use crate::config::{Record, Resolution, StopRule, WaveConfig};
 use crate::error::WaveError;
-use crate::lane::{Direction, Lane, MergeRule, Pushed, Window};
+use crate::lane::{Direction, Lane, MergeRule, Pushed};
 use crate::queue::{EventInPast, EventKey, EventQueue};
 use crate::real::Real;
 use crate::record::{FrontRecord, Recording, WallSample};
 use crate::wall::{self, ContactState};
+use crate::window::Window;
 use impact_model::escape::{EscapeBound, Margin, internal_energy};
 use impact_model::{
     ContactHistory, EngineKind, InterfaceCoefficients, Outcome, Rod, StopReason, Truncation, Units,

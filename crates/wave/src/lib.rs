@@ -28,6 +28,7 @@ mod real;
 mod record;
 mod solve;
 mod wall;
+mod window;
 
 pub use config::{Precision, Record, Resolution, StopRule, WaveConfig};
 pub use engine::{Decisions, Step, StepKind, Tracer, WaveEngine};

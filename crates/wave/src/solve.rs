@@ -187,7 +187,7 @@ pub fn solve(rod: &Rod, config: &WaveConfig) -> Result<Solution, WaveError> {
 
 /// How much tighter the tolerances of the rerun that measures their effect
 /// are: the configured simultaneity window and the grazing tolerance. The
-/// window's rounding part stays (`lane::Window`), so the rerun cannot split
+/// window's rounding part stays (`window::Window`), so the rerun cannot split
 /// true ties and measure its own rounding.
 const TIGHTER: f64 = 1e-2;
 
