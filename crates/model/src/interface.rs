@@ -13,6 +13,7 @@
 //! With equal densities these are the paper's `R12, T12, R21, T21` (Appendix B,
 //! Eqs. B1-B2), see [`crate::theory`].
 
+use crate::escape::Arithmetic;
 use crate::scene::LayerProps;
 
 /// Strain reflection and transmission coefficients of one interface.
@@ -43,13 +44,25 @@ impl<T> InterfaceCoefficients<T> {
 impl InterfaceCoefficients {
     /// Coefficients of the interface with `lower` below and `upper` above.
     pub fn between(lower: &LayerProps, upper: &LayerProps) -> Self {
-        let (zi, zj) = (lower.impedance, upper.impedance);
+        Self::of_sides(
+            (lower.impedance, lower.modulus),
+            (upper.impedance, upper.modulus),
+        )
+    }
+}
+
+impl<T: Arithmetic> InterfaceCoefficients<T> {
+    /// Coefficients of the interface between layers of `(impedance,
+    /// modulus)` `lower` and `upper`, in any arithmetic (an engine running
+    /// in double-double derives them in its own, from the same formulas).
+    pub fn of_sides((zi, ei): (T, T), (zj, ej): (T, T)) -> Self {
         let sum = zi + zj;
+        let two = T::of(2.0);
         Self {
             up_reflected: (zj - zi) / sum,
-            up_transmitted: 2.0 * zj / sum * (lower.modulus / upper.modulus),
+            up_transmitted: two * zj / sum * (ei / ej),
             down_reflected: (zi - zj) / sum,
-            down_transmitted: 2.0 * zi / sum * (upper.modulus / lower.modulus),
+            down_transmitted: two * zi / sum * (ej / ei),
         }
     }
 }

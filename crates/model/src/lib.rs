@@ -37,7 +37,7 @@ pub use bilayer::Bilayer;
 pub use contact::ContactHistory;
 pub use interface::InterfaceCoefficients;
 pub use outcome::{EngineKind, ErrorEstimate, Outcome, StopReason, Truncation};
-pub use scene::{Layer, LayerProps, Rod, Scene, SceneError};
+pub use scene::{Layer, LayerProps, Rod, Scene, SceneError, WaveConstants};
 pub use setting::{Allowed, SettingError};
 pub use timed::Timed;
 pub use units::Units;

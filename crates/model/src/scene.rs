@@ -1,6 +1,7 @@
 //! Scenes as users write them, and their validation into a [`Rod`].
 
 use crate::WallContact;
+use crate::escape::Arithmetic;
 use crate::units::Units;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
@@ -339,20 +340,46 @@ pub struct LayerProps {
     pub transit_time: f64,
 }
 
+/// A layer's wave speed, impedance and transit time from its length,
+/// modulus and density, in any arithmetic: [`LayerProps`] holds them in
+/// doubles, and an engine running in double-double derives its own by the
+/// same operations.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WaveConstants<T> {
+    /// `c = sqrt(E / rho)`.
+    pub wave_speed: T,
+    /// `Z = rho c`.
+    pub impedance: T,
+    /// `L / c`.
+    pub transit_time: T,
+}
+
+impl<T: Arithmetic> WaveConstants<T> {
+    /// The constants of a layer of `length`, `modulus` and `density`.
+    pub fn of(length: T, modulus: T, density: T) -> Self {
+        let wave_speed = (modulus / density).sqrt();
+        Self {
+            wave_speed,
+            impedance: density * wave_speed,
+            transit_time: length / wave_speed,
+        }
+    }
+}
+
 impl LayerProps {
     /// Every derived quantity of a layer of the given length, modulus and
     /// density whose bottom sits at `bottom`.
     fn derive(bottom: f64, length: f64, modulus: f64, density: f64) -> Self {
-        let wave_speed = (modulus / density).sqrt();
+        let waves = WaveConstants::of(length, modulus, density);
         LayerProps {
             bottom,
             top: bottom + length,
             length,
             modulus,
             density,
-            wave_speed,
-            impedance: density * wave_speed,
-            transit_time: length / wave_speed,
+            wave_speed: waves.wave_speed,
+            impedance: waves.impedance,
+            transit_time: waves.transit_time,
         }
     }
 

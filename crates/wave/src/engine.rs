@@ -17,6 +17,7 @@ use crate::window::Window;
 use impact_model::escape::{EscapeBound, Margin, internal_energy};
 use impact_model::{
     ContactHistory, EngineKind, InterfaceCoefficients, Outcome, Rod, StopReason, Truncation, Units,
+    WaveConstants,
 };
 
 /// Instants this many ulps apart (of the time, plus the shortest transit)
@@ -106,6 +107,7 @@ pub(crate) struct LayerConst<R> {
     pub modulus: R,
     pub wave_speed: R,
     pub impedance: R,
+    pub transit_time: R,
     /// Fronts with `|jump|` below this are dropped.
     pub(crate) drop_strain: R,
 }
@@ -220,20 +222,6 @@ pub(crate) fn past(e: EventInPast) -> WaveError {
     }
 }
 
-/// [`InterfaceCoefficients::between`] in the run's arithmetic, by the same
-/// operations.
-fn scattering<R: Real>(lower: &LayerConst<R>, upper: &LayerConst<R>) -> InterfaceCoefficients<R> {
-    let (zi, zj) = (lower.impedance, upper.impedance);
-    let sum = zi + zj;
-    let two = R::of(2.0);
-    InterfaceCoefficients {
-        up_reflected: (zj - zi) / sum,
-        up_transmitted: two * zj / sum * (lower.modulus / upper.modulus),
-        down_reflected: (zi - zj) / sum,
-        down_transmitted: two * zi / sum * (upper.modulus / lower.modulus),
-    }
-}
-
 impl<R: Real> Tracer<R> {
     /// Prepares a run: the impact happens at `t = 0`, launching the
     /// compression front `-v_b / c0` from the wall. A tracer runs one
@@ -277,26 +265,26 @@ impl<R: Real> Tracer<R> {
             ),
         };
         // The layers' derived constants in the run's arithmetic, from their
-        // primary quantities by the operations of `LayerProps::derive` (and
-        // the scattering by those of `InterfaceCoefficients::between`): a
-        // double run gets the model's numbers bit for bit, a double-double
-        // run its own. Taken from the model's doubles, they carried double
+        // primary quantities by the model's formulas (`WaveConstants`,
+        // `InterfaceCoefficients::of_sides`): a double run gets the model's
+        // numbers bit for bit, a double-double run its own. Taken from the model's doubles, they carried double
         // rounding into the double-double rerun: on the grazing line
         // `alpha = 0.1`, whose points are rerun so, `e` was 2.5 ulps from the
         // 40-digit value under a bound of 1.7 (`tests/integration/tracker.rs`).
         let layers: Vec<LayerConst<R>> = scaled
             .iter()
             .map(|l| {
-                let (length, modulus, density) = (of(l.length), of(l.modulus), of(l.density));
-                let wave_speed = (modulus / density).sqrt();
+                let (length, modulus) = (of(l.length), of(l.modulus));
+                let waves = WaveConstants::of(length, modulus, of(l.density));
                 LayerConst {
                     bottom: of(l.bottom),
                     top: of(l.top),
                     length,
                     modulus,
-                    wave_speed,
-                    impedance: density * wave_speed,
-                    drop_strain: of(config.drop_tolerance) * vb / wave_speed,
+                    wave_speed: waves.wave_speed,
+                    impedance: waves.impedance,
+                    transit_time: waves.transit_time,
+                    drop_strain: of(config.drop_tolerance) * vb / waves.wave_speed,
                 }
             })
             .collect();
@@ -314,7 +302,7 @@ impl<R: Real> Tracer<R> {
             .iter()
             .enumerate()
             .flat_map(|(i, l)| {
-                let transit = layers[i].length / layers[i].wave_speed;
+                let transit = layers[i].transit_time;
                 [Direction::Up, Direction::Down]
                     .map(|d| Lane::new(i, d, transit, rule(l.transit_time, l.wave_speed)))
             })
@@ -330,7 +318,10 @@ impl<R: Real> Tracer<R> {
             .collect();
         let interfaces = layers
             .windows(2)
-            .map(|w| scattering(&w[0], &w[1]))
+            .map(|w| {
+                let side = |l: &LayerConst<R>| (l.impedance, l.modulus);
+                InterfaceCoefficients::of_sides(side(&w[0]), side(&w[1]))
+            })
             .collect();
         let c0 = layers[0].wave_speed;
         let transit_sum: f64 = scaled.iter().map(|l| l.transit_time).sum();
