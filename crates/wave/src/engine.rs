@@ -9,6 +9,7 @@
 use crate::config::{Record, Resolution, StopRule, WaveConfig};
 use crate::error::WaveError;
 use crate::lane::{Direction, Lane, MergeRule, Pushed};
+use crate::leap::Train;
 use crate::queue::{EventInPast, EventKey, EventQueue};
 use crate::real::Real;
 use crate::record::{FrontRecord, Recording, WallSample};
@@ -25,6 +26,12 @@ use impact_model::{
 /// this small is rounding, not a use of the simultaneity window: the error
 /// estimate's rounding part covers it.
 pub(crate) const TIE_ULPS: f64 = 64.0;
+
+/// A contact decision within this margin of going the other way (relative
+/// to the impact's strain or speed) is near grazing: a run that takes one
+/// is repeated in double-double (`solve.rs`), and a leap leaves it to the
+/// loop.
+pub(crate) const NEAR_GRAZING: f64 = 1e-7;
 
 /// The merge rule of a lane, from its layer's transit time and wave speed.
 type LaneRule<R> = dyn Fn(f64, f64) -> MergeRule<R>;
@@ -184,6 +191,8 @@ pub struct Tracer<R: Real> {
     pub(crate) window: Window<R>,
     pub(crate) grazing_strain: R,
     pub(crate) merged: bool,
+    /// Whether quiet layers are leapt (see `leap.rs`).
+    pub(crate) leaps: bool,
     max_events: u64,
     pub(crate) max_time: R,
     stop_rule: StopRule,
@@ -203,9 +212,12 @@ pub struct Tracer<R: Real> {
     pub(crate) leap_after: Vec<R>,
     /// Lattice deposits a leap gathers before placing them: (lane, at, d).
     pub(crate) deposits: Vec<(usize, R, R)>,
+    /// Trains an exact leap sends into its neighbours' lanes, spawned
+    /// front by front in birth order when the leap ends.
+    pub(crate) exact_trains: Vec<(usize, Train<R>)>,
     /// Recent geometric sums `(q, n) -> (s0, s1, s2)`.
     pub(crate) sums_memo: Vec<(R, u64, (R, R, R))>,
-    next_id: u32,
+    pub(crate) next_id: u32,
     pub(crate) now: R,
     stopped: Option<StopReason>,
     pub(crate) units: Units,
@@ -297,7 +309,11 @@ impl<R: Real> Tracer<R> {
         let fast_top = n >= 2
             && scaled[n - 1].transit_time * crate::leap::LEAST_TRANSITS
                 < scaled[n - 2].transit_time;
-        let fold = !(config.record.fronts || (merged && fast_top));
+        // An exact run leaps only when nothing is recorded: a recording
+        // shows every event.
+        let leaps =
+            config.leap_quiet_layers && (merged || !(config.record.wall || config.record.fronts));
+        let fold = !(config.record.fronts || (leaps && fast_top));
         let mut lanes: Vec<Lane<R>> = scaled
             .iter()
             .enumerate()
@@ -349,6 +365,7 @@ impl<R: Real> Tracer<R> {
             window,
             grazing_strain: of(config.grazing_tolerance) * vb / c0,
             merged,
+            leaps,
             max_events: config.max_events,
             max_time: of(config.max_time_factor * transit_sum),
             stop_rule: config.stop,
@@ -365,6 +382,7 @@ impl<R: Real> Tracer<R> {
             leap_work: 0,
             leap_after: vec![R::neg_infinity(); n],
             deposits: Vec::new(),
+            exact_trains: Vec::new(),
             sums_memo: Vec::new(),
             next_id: 0,
             now: R::zero(),
@@ -566,7 +584,8 @@ impl<R: Real> Tracer<R> {
                 gap,
             } => {
                 if gap > R::zero() {
-                    self.note_combined(gap);
+                    // (a leap spawns fronts born after now)
+                    self.note_combined(gap, t);
                 }
                 if beyond_simultaneity {
                     self.drops.truncation.merged_fronts += 1;
@@ -627,15 +646,16 @@ impl<R: Real> Tracer<R> {
         }
     }
 
-    /// Counts a combination of two instants `gap > 0` apart if the gap is
-    /// more than rounding (a few ulps of the time and of the shortest
-    /// transit): a tie that rounding split is no use of the tolerance.
+    /// Counts a combination of two instants `gap > 0` apart, the later at
+    /// `at`, if the gap is more than rounding (a few ulps of the time and
+    /// of the shortest transit): a tie that rounding split is no use of the
+    /// tolerance.
     #[cold]
-    fn note_combined(&mut self, gap: R) {
+    pub(crate) fn note_combined(&mut self, gap: R, at: R) {
         // the window's rounding part, and the rounding of the deadline
         // `t + window` itself (an ulp of `t`)
         let w = self.window;
-        let now = self.now.abs();
+        let now = at.abs();
         let rounding = w.ulps * (now + w.scale) + R::of(2.0 * f64::EPSILON) * now;
         if gap > rounding {
             self.decisions.within_tolerance += 1;
@@ -651,7 +671,7 @@ impl<R: Real> Tracer<R> {
             Some(t) if t <= deadline => {
                 if t > self.now {
                     let gap = t - self.now;
-                    self.note_combined(gap);
+                    self.note_combined(gap, t);
                 }
             }
             _ => return Ok(None),
@@ -722,7 +742,7 @@ impl<R: Real> Tracer<R> {
                 kind: StepKind::Stopped(reason),
             });
         }
-        if self.events >= self.max_events {
+        if self.steps() >= self.max_events {
             return Err(WaveError::EventLimit {
                 events: self.events(),
                 time: self.time(),
@@ -743,9 +763,13 @@ impl<R: Real> Tracer<R> {
         let kind = match key {
             EventKey::Layer(layer) => {
                 let layer = layer as usize;
-                if self.merged
+                if self.leaps
                     && let Some(events) = self.leap(layer)?
                 {
+                    // the arrival that started the leap is among the events
+                    // it counts: the loop's iteration is work, not an event
+                    self.events -= 1;
+                    self.leap_work += 1;
                     StepKind::Leap { layer, events }
                 } else {
                     // a layer is in the queue exactly while one of its lanes
@@ -823,7 +847,7 @@ impl<R: Real> Tracer<R> {
     fn note_decision(&mut self, margin: R) {
         let m = margin.abs().to_f64();
         self.decisions.count += 1;
-        if m < 1e-7 {
+        if m < NEAR_GRAZING {
             self.decisions.near_grazing += 1;
         }
         self.decisions.smallest_margin = self.decisions.smallest_margin.min(m);

@@ -138,7 +138,11 @@ impl<R: Real> Lane<R> {
             keep_at_most,
         } = self.rule
         else {
-            self.fronts.extend(fronts);
+            // an exact lane: fronts born together are one, as `push` makes
+            // them (a leap's phases are separate fronts however close)
+            for f in fronts {
+                self.push(f.born, f.jump, f.id);
+            }
             self.refresh_head();
             return;
         };
@@ -290,6 +294,34 @@ impl<R: Real> Lane<R> {
                 keep_at_most,
             } => self.push_on_lattice(born, jump, id, spacing, keep_above, keep_at_most),
         }
+    }
+
+    /// Makes room for `more` fronts (a leap's trains, pushed at once).
+    pub fn reserve(&mut self, more: usize) {
+        self.fronts.reserve(more);
+    }
+
+    /// [`Lane::push`] on an exact lane whose `window` the caller holds (a
+    /// leap's thousands of fronts, inlined): `None` when the front is new,
+    /// else the gap to the newest front it was merged into.
+    #[inline(always)]
+    pub fn push_exact(&mut self, born: R, jump: R, id: u32, window: Window<R>) -> Option<R> {
+        if let Some(last) = self.fronts.back_mut() {
+            let gap = born - last.born;
+            if gap <= window.at(born) {
+                last.jump += jump;
+                return Some(gap);
+            }
+        } else {
+            self.head_at = Some(self.arrival_of(born));
+        }
+        self.fronts.push_back(Front {
+            born,
+            jump,
+            id,
+            kept: false,
+        });
+        None
     }
 
     /// [`Lane::push`] under [`MergeRule::Lattice`]: merged runs only, kept

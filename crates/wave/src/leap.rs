@@ -19,16 +19,24 @@
 //! value bounds the height from below and the leap stops before the bottom
 //! could land. The event loop then takes the decision itself.
 //!
-//! Leaps are made only in merged runs (lattice lanes), where the neighbours
-//! accept deposits in bulk; exact runs stay step by step, bit for bit.
+//! A merged run's neighbours take the deposits on their lattices in bulk;
+//! an exact run's take every front, spawned in birth order when the leap
+//! ends (a leap's trains interleave). An exact leap leaves to the loop any
+//! return whose contact decision comes within [`NEAR_GRAZING`] of going the
+//! other way, so the loop still counts them (they decide the double-double
+//! repeat). What it changes is rounding only: a front's jump after `k`
+//! round trips is `a q^k` instead of `k` products, its birth `tau + k P`
+//! instead of `2 k` sums, and the wall impulse a geometric sum.
 
-use crate::engine::Tracer;
+use crate::engine::{NEAR_GRAZING, Tracer};
 use crate::error::WaveError;
 use crate::geometric::sums;
 use crate::lane::{Direction, Front, Lane, MergeRule};
 use crate::queue::EventKey;
 use crate::real::Real;
 use crate::wall::ContactState;
+use crate::window::Window;
+use std::cmp::Ordering;
 
 /// Leaps shorter than this many transits of the layer are not worth it.
 pub(crate) const LEAST_TRANSITS: f64 = 8.0;
@@ -59,7 +67,7 @@ struct Ends<R> {
 
 /// A train of fronts: `c q^k` born at `start + k period`, `k < count`.
 #[derive(Debug, Clone, Copy)]
-struct Train<R> {
+pub(crate) struct Train<R> {
     start: R,
     period: R,
     c: R,
@@ -214,13 +222,84 @@ fn count_before<R: Real>(start: R, period: R, end: R) -> u64 {
     n
 }
 
+/// Fronts going into one exact lane at the end of a leap, as
+/// [`Tracer::spawn_front`] would take them: what it drops and the merges
+/// it notes are kept for the tracer's ledgers.
+struct Into<'a, R> {
+    lane: &'a mut Lane<R>,
+    window: Window<R>,
+    thr: R,
+    id: u32,
+    /// The jumps added (the layer's base moves by them).
+    total: R,
+    dropped: Vec<(R, R)>,
+    /// Merges of births more than zero apart: `(gap, born)`.
+    merges: Vec<(R, R)>,
+}
+
+impl<R: Real> Into<'_, R> {
+    #[inline(always)]
+    fn put(&mut self, born: R, jump: R) {
+        if jump.abs() < self.thr {
+            if jump != R::zero() {
+                self.dropped.push((born, jump));
+            }
+            return;
+        }
+        self.total += jump;
+        match self.lane.push_exact(born, jump, self.id, self.window) {
+            None => self.id += 1,
+            Some(gap) => {
+                if gap > R::zero() {
+                    self.merges.push((gap, born));
+                }
+            }
+        }
+    }
+}
+
+/// The births of ringing trains round by round: round `k` of every train
+/// (sorted by start), then round `k + 1`; jumps by one product a round.
+fn rounds<R: Real>(rings: &[(usize, Train<R>)], mut put: impl FnMut(R, R)) {
+    let count = rings.iter().map(|t| t.1.count).max().unwrap_or(0);
+    let mut jumps: Vec<R> = rings.iter().map(|t| t.1.c).collect();
+    for k in 0..count {
+        let kk = R::of(k as f64);
+        for ((_, t), jump) in rings.iter().zip(jumps.iter_mut()) {
+            if k < t.count {
+                put(t.start + kk * t.period, *jump);
+                *jump = *jump * t.q;
+            }
+        }
+    }
+}
+
+/// Whether the singles then [`rounds`] come in birth order: singles (sorted)
+/// before the first ring, and rings (sorted, one period) whose starts lie
+/// within a period by more than rounding, so that the rounded births of
+/// round `k` stay before those of round `k + 1`.
+fn in_rounds<R: Real>(singles: &[(usize, Train<R>)], rings: &[(usize, Train<R>)]) -> bool {
+    let (Some(first), Some(last)) = (rings.first(), rings.last()) else {
+        return true;
+    };
+    let period = first.1.period;
+    let end = rings
+        .iter()
+        .map(|t| t.1.start + R::of(t.1.count as f64) * period)
+        .fold(R::zero(), |m, x| if x > m { x } else { m });
+    let rounding = R::of(8.0 * f64::EPSILON) * (end.abs() + period);
+    singles.last().is_none_or(|s| s.1.start <= first.1.start)
+        && rings.iter().all(|t| t.1.period == period)
+        && last.1.start - first.1.start + rounding < period
+}
+
 impl<R: Real> Tracer<R> {
     /// Tries to leap layer `i` from now over its quiet window; the number
     /// of boundary events it stood for, or `None` when the layer is not
     /// quiet long enough (or the run is exact).
     pub(crate) fn leap(&mut self, i: usize) -> Result<Option<u64>, WaveError> {
         let n = self.layers.len();
-        if !self.merged || self.record.fronts || n < 2 {
+        if !self.leaps || self.record.fronts || n < 2 {
             return Ok(None);
         }
         let up = Lane::<R>::index(i, Direction::Up);
@@ -243,12 +322,7 @@ impl<R: Real> Tracer<R> {
                 horizon = horizon.min(a);
             }
         };
-        if i > 0 {
-            bound(self.lanes[Lane::<R>::index(i - 1, Direction::Up)].head_arrival());
-        }
-        if has_above && let Some(l) = self.from_above[i + 1] {
-            bound(self.lanes[l].head_arrival());
-        }
+        bound(self.first_from_outside(i));
         // (a landing is the leap's own business: found in closed form below)
         for key in [EventKey::Escape, EventKey::Horizon] {
             bound(self.queue.time_of(key));
@@ -271,11 +345,7 @@ impl<R: Real> Tracer<R> {
         if phases.is_empty() {
             return Ok(None);
         }
-        phases.sort_by(|a, b| {
-            a.tau
-                .partial_cmp(&b.tau)
-                .unwrap_or(std::cmp::Ordering::Equal)
-        });
+        phases.sort_by(|a, b| a.tau.partial_cmp(&b.tau).unwrap_or(Ordering::Equal));
         let q = ends.bottom * ends.top;
         if i == 0 {
             self.advance_wall(t);
@@ -384,9 +454,48 @@ impl<R: Real> Tracer<R> {
         self.up_base[i] += up_sum;
         self.down_base[i] += down_sum;
         self.place_deposits()?;
+        self.place_exact_trains()?;
         self.rebuild(i, fronts)?;
         self.leaped += events;
         Ok(Some(events))
+    }
+
+    /// The earliest any front outside layer `i` can reach it: one going
+    /// towards it after crossing the layers between, one going away after
+    /// a reflection at its own layer's far end as well (at an interface,
+    /// the free top or the wall; any other path is longer), and the front a
+    /// landing starts at the wall. Bounding only
+    /// by the fronts going towards the layer let a neighbour's front,
+    /// reflected at its far end, come back inside the leap: the layer had
+    /// already been advanced past it (an exact lane then took a front
+    /// born before its newest; a three-layer rod lost a third of its
+    /// energy, `tests/conservation.rs`).
+    fn first_from_outside(&self, i: usize) -> Option<R> {
+        let transit = |m: usize| self.lanes[Lane::<R>::index(m, Direction::Up)].transit;
+        let mut earliest: Option<R> = None;
+        for lane in &self.lanes {
+            let j = lane.layer;
+            let Some(head) = lane.head_arrival().filter(|_| j != i) else {
+                continue;
+            };
+            // a folded top lane's arrivals are already its returns
+            let towards = lane.folded || (lane.direction == Direction::Up) == (j < i);
+            let between = if j < i { j + 1..i } else { i + 1..j };
+            let mut at = between.fold(head, |at, m| at + transit(m));
+            if !towards {
+                at += transit(j);
+            }
+            earliest = Some(earliest.map_or(at, |e| if at < e { at } else { e }));
+        }
+        // a landing bottom starts a front at the wall (its other fronts
+        // reach the wall as a lane's fronts going down, counted above)
+        if i > 0
+            && let Some(land) = self.queue.time_of(EventKey::Reconnection)
+        {
+            let at = (0..i).fold(land, |at, m| at + transit(m));
+            earliest = Some(earliest.map_or(at, |e| if at < e { at } else { e }));
+        }
+        earliest
     }
 
     /// Geometric sums, remembered within a leap: the fronts of a quiet
@@ -517,11 +626,17 @@ impl<R: Real> Tracer<R> {
                 let c0 = strain + two * limit;
                 let mut prefix = R::zero();
                 let mut stop = horizon;
+                // an exact run's loop takes the near-grazing decisions
+                let threshold = if self.merged {
+                    self.grazing_strain
+                } else {
+                    let scale = self.impact_speed / self.layers[0].wave_speed;
+                    self.grazing_strain.max(R::of(NEAR_GRAZING) * scale)
+                };
                 for p in phases {
                     prefix += p.amp;
                     let kmax = count_before(p.tau, period, horizon);
-                    if let Some(k) =
-                        first_crossing(c0, two * (prefix - limit), q, kmax, -self.grazing_strain)
+                    if let Some(k) = first_crossing(c0, two * (prefix - limit), q, kmax, -threshold)
                     {
                         stop = stop.min(p.tau + R::of(k as f64) * period);
                     }
@@ -654,9 +769,14 @@ impl<R: Real> Tracer<R> {
             keep_at_most,
         } = self.lanes[lane].rule
         else {
-            for k in 0..alive {
-                self.spawn_front(layer, dir, born(k), amp(k))?;
-            }
+            self.deposits = deposits;
+            self.exact_trains.push((
+                lane,
+                Train {
+                    count: alive,
+                    ..train
+                },
+            ));
             return Ok(());
         };
         let mut k = 0;
@@ -727,17 +847,92 @@ impl<R: Real> Tracer<R> {
         Ok(())
     }
 
+    /// Spawns the fronts of the trains an exact leap sent into its
+    /// neighbours, lane by lane in birth order, as [`Tracer::spawn_front`]
+    /// would one by one (under the drop threshold dropped, born together
+    /// merged): first the single fronts (from fronts that were going up
+    /// as the leap began), then the ringing trains round by round. That is
+    /// birth order when their starts lie within one period, as a leap's
+    /// do; otherwise (rounding at the edge) the births are sorted first.
+    fn place_exact_trains(&mut self) -> Result<(), WaveError> {
+        if self.exact_trains.is_empty() {
+            return Ok(());
+        }
+        let mut trains = std::mem::take(&mut self.exact_trains);
+        trains.sort_by(|a, b| {
+            (a.0, a.1.count > 1)
+                .cmp(&(b.0, b.1.count > 1))
+                .then(a.1.start.partial_cmp(&b.1.start).unwrap_or(Ordering::Equal))
+        });
+        let mut rest = &trains[..];
+        while let Some(&(lane, _)) = rest.first() {
+            let len = rest.iter().take_while(|t| t.0 == lane).count();
+            let (group, next) = rest.split_at(len);
+            rest = next;
+            let singles = group.partition_point(|t| t.1.count <= 1);
+            let (singles, rings) = group.split_at(singles);
+            let births = singles.len() as u64 + rings.iter().map(|t| t.1.count).sum::<u64>();
+            self.leap_work += births;
+            let layer = self.lanes[lane].layer;
+            let MergeRule::Simultaneous { window } = self.lanes[lane].rule else {
+                unreachable!("a merged run's leaps deposit on lattices")
+            };
+            let mut into = Into {
+                lane: &mut self.lanes[lane],
+                window,
+                thr: self.layers[layer].drop_strain,
+                id: self.next_id,
+                total: R::zero(),
+                dropped: Vec::new(),
+                merges: Vec::new(),
+            };
+            into.lane.reserve(births as usize);
+            if in_rounds(singles, rings) {
+                for t in singles {
+                    into.put(t.1.start, t.1.c);
+                }
+                rounds(rings, |born, jump| into.put(born, jump));
+            } else {
+                let mut all: Vec<(R, R)> = singles.iter().map(|t| (t.1.start, t.1.c)).collect();
+                rounds(rings, |born, jump| all.push((born, jump)));
+                all.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap_or(Ordering::Equal));
+                for (born, jump) in all {
+                    into.put(born, jump);
+                }
+            }
+            let Into {
+                id,
+                total,
+                dropped,
+                merges,
+                ..
+            } = into;
+            self.next_id = id;
+            match self.lanes[lane].direction {
+                Direction::Up => self.up_base[layer] += total,
+                Direction::Down => self.down_base[layer] += total,
+            }
+            for (born, jump) in dropped {
+                self.drop_front(layer, born, jump);
+            }
+            for (gap, at) in merges {
+                self.note_combined(gap, at);
+            }
+            self.reschedule_layer(layer)?;
+        }
+        trains.clear();
+        self.exact_trains = trains;
+        Ok(())
+    }
+
     /// Replaces layer `i`'s fronts after a leap: `(up, down)` fronts.
     fn rebuild(
         &mut self,
         i: usize,
         (mut up, mut down): (Vec<Front<R>>, Vec<Front<R>>),
     ) -> Result<(), WaveError> {
-        let by_birth = |a: &Front<R>, b: &Front<R>| {
-            a.born
-                .partial_cmp(&b.born)
-                .unwrap_or(std::cmp::Ordering::Equal)
-        };
+        let by_birth =
+            |a: &Front<R>, b: &Front<R>| a.born.partial_cmp(&b.born).unwrap_or(Ordering::Equal);
         up.sort_by(by_birth);
         down.sort_by(by_birth);
         let ui = Lane::<R>::index(i, Direction::Up);

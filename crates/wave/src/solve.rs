@@ -2,7 +2,8 @@
 //! make, in which arithmetic, and what their differences say.
 //!
 //! - Exact when it fits: most scenes (every point of the paper's grid) need
-//!   at most a few times `10^4` events. Nothing is merged; the error is what
+//!   at most a few times `10^4` events. Nothing is merged (quiet layers leap
+//!   their ringing in closed form, every front kept); the error is what
 //!   dropped fronts can carry plus rounding.
 //! - Otherwise merged: small fronts are deposited on a lattice of birth
 //!   times in each lane (their jump and first moment kept, so momentum is

@@ -11,36 +11,17 @@ use impact_model::{Layer, Outcome, Rod, Scene};
 use impact_wave::{Precision, Resolution, WaveConfig, WaveError, simulate};
 use std::time::Instant;
 
-/// A tiny xorshift generator: reproducible scenes without a dependency.
-struct XorShift(u64);
+mod common;
+use common::XorShift;
 
-impl XorShift {
-    /// Uniform in `[0, 1)`.
-    fn next(&mut self) -> f64 {
-        let s = &mut self.0;
-        *s ^= *s << 13;
-        *s ^= *s >> 7;
-        *s ^= *s << 17;
-        (*s >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// Uniform in `[lo, hi)`.
-    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
-
-    /// Log-uniform in `[lo, hi)`.
-    fn log_uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        10f64.powf(self.uniform(lo.log10(), hi.log10()))
-    }
-}
-
-/// The exact solution in plain double precision, refusing to run past
-/// `max_events` (then `None`).
+/// The exact solution in plain double precision, event by event (no leaps:
+/// the reference shares no closed form with the runs it checks), refusing
+/// to run past `max_events` (then `None`).
 fn exact_run(rod: &Rod, max_events: u64) -> Option<Outcome> {
     let config = WaveConfig {
         resolution: Resolution::Exact,
         precision: Precision::Double,
+        leap_quiet_layers: false,
         max_events,
         ..WaveConfig::default()
     };

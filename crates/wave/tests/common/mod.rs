@@ -34,3 +34,27 @@ pub fn assert_valid(o: &Outcome) {
         assert!(w[0][1] <= w[1][0], "contacts overlap: {o:?}");
     }
 }
+
+/// A tiny xorshift generator: reproducible scenes without a dependency.
+pub struct XorShift(pub u64);
+
+impl XorShift {
+    /// Uniform in `[0, 1)`.
+    pub fn next(&mut self) -> f64 {
+        let s = &mut self.0;
+        *s ^= *s << 13;
+        *s ^= *s >> 7;
+        *s ^= *s << 17;
+        (*s >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// Uniform in `[lo, hi)`.
+    pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.next()
+    }
+
+    /// Log-uniform in `[lo, hi)`.
+    pub fn log_uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        10f64.powf(self.uniform(lo.log10(), hi.log10()))
+    }
+}
