@@ -41,6 +41,30 @@ use std::cmp::Ordering;
 /// Leaps shorter than this many transits of the layer are not worth it.
 pub(crate) const LEAST_TRANSITS: f64 = 8.0;
 
+/// When each layer may first try to leap: never (infinity) where a
+/// neighbour's round trip is under [`LEAST_TRANSITS`] of the layer's own
+/// transits (what a leap sends it would come back too soon) or the layer is
+/// a folded top; else from the start. Without this every boundary event of
+/// such a layer tried, at a tenth of a small point's time.
+pub(crate) fn first_leaps<R: Real>(transits: &[R], folded_top: bool) -> Vec<R> {
+    let n = transits.len();
+    (0..n)
+        .map(|i| {
+            let least = R::of(LEAST_TRANSITS) * transits[i];
+            let neighbours = [i.checked_sub(1), (i + 1 < n).then_some(i + 1)];
+            let too_soon = neighbours
+                .into_iter()
+                .flatten()
+                .any(|j| transits[j] + transits[j] < least);
+            if n < 2 || too_soon || (folded_top && i == n - 1) {
+                -R::neg_infinity()
+            } else {
+                R::neg_infinity()
+            }
+        })
+        .collect()
+}
+
 /// A front ringing in the leaping layer.
 #[derive(Debug, Clone, Copy)]
 struct Phase<R> {
@@ -314,21 +338,18 @@ impl<R: Real> Tracer<R> {
         let has_above = i + 1 < n;
         let ti = self.lanes[up].transit;
         let period = ti + ti;
+        let least = R::of(LEAST_TRANSITS) * ti;
         // the quiet window: until something arrives from outside, or the
-        // run's own stops
+        // run's own stops; what the leap itself sends into a neighbour
+        // comes back after the neighbour's round trip at the earliest (a
+        // layer that round trip alone keeps from leaping never tries, see
+        // `first_leaps`)
         let mut horizon = self.max_time;
         let mut bound = |a: Option<R>| {
             if let Some(a) = a {
                 horizon = horizon.min(a);
             }
         };
-        bound(self.first_from_outside(i));
-        // (a landing is the leap's own business: found in closed form below)
-        for key in [EventKey::Escape, EventKey::Horizon] {
-            bound(self.queue.time_of(key));
-        }
-        // what the leap itself sends into a neighbour comes back after the
-        // neighbour's round trip at the earliest
         if i > 0 {
             let below = self.lanes[Lane::<R>::index(i - 1, Direction::Up)].transit;
             bound(Some(t + below + below));
@@ -337,7 +358,20 @@ impl<R: Real> Tracer<R> {
             let above = self.lanes[Lane::<R>::index(i + 1, Direction::Up)].transit;
             bound(Some(t + above + above));
         }
-        if horizon - t < R::of(LEAST_TRANSITS) * ti {
+        // (the bottom's own landing is found in closed form below)
+        if let Some(outside) = self.first_from_outside(i) {
+            if outside - t < least {
+                // no leap before that arrival: fronts born from now on
+                // reach the layer no earlier than the self-sent bound
+                self.leap_after[i] = outside;
+                return Ok(None);
+            }
+            bound(Some(outside));
+        }
+        for key in [EventKey::Escape, EventKey::Horizon] {
+            bound(self.queue.time_of(key));
+        }
+        if horizon - t < least {
             return Ok(None);
         }
         let ends = self.ends(i);
@@ -350,7 +384,7 @@ impl<R: Real> Tracer<R> {
         if i == 0 {
             self.advance_wall(t);
             horizon = horizon.min(self.wall_stop(&phases, q, period, horizon));
-            if horizon - t < R::of(LEAST_TRANSITS) * ti {
+            if horizon - t < least {
                 // a decision is near: no leap until the loop has taken it
                 self.leap_after[i] = horizon;
                 return Ok(None);
