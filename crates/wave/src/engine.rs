@@ -210,6 +210,8 @@ pub struct Tracer<R: Real> {
     pub(crate) leap_work: u64,
     /// Per layer: no leap before this time (a wall decision is due first).
     pub(crate) leap_after: Vec<R>,
+    /// Per layer: no try to leap before this many loop events.
+    pub(crate) leap_retry: Vec<u64>,
     /// Lattice deposits a leap gathers before placing them: (lane, at, d).
     pub(crate) deposits: Vec<(usize, R, R)>,
     /// Trains an exact leap sends into its neighbours' lanes, spawned
@@ -384,6 +386,7 @@ impl<R: Real> Tracer<R> {
                 &layers.iter().map(|l| l.transit_time).collect::<Vec<_>>(),
                 fold,
             ),
+            leap_retry: vec![0; n],
             deposits: Vec::new(),
             exact_trains: Vec::new(),
             sums_memo: Vec::new(),
@@ -770,6 +773,7 @@ impl<R: Real> Tracer<R> {
                 // and the call alone cost a small point a sixth of its time)
                 if self.leaps
                     && t >= self.leap_after[layer]
+                    && self.events >= self.leap_retry[layer]
                     && let Some(events) = self.leap(layer)?
                 {
                     // the arrival that started the leap is among the events
