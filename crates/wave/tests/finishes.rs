@@ -7,30 +7,12 @@
 //! the promise against independent computations: an exact run where one can
 //! be afforded, a double-double run, and the same rod written in other units.
 
-use impact_model::{Layer, Outcome, Rod, Scene};
-use impact_wave::{Precision, Resolution, WaveConfig, WaveError, simulate};
+use impact_model::{Layer, Outcome, Scene};
+use impact_wave::{Precision, Resolution, WaveConfig, simulate};
 use std::time::Instant;
 
 mod common;
-use common::XorShift;
-
-/// The exact solution in plain double precision, event by event (no leaps:
-/// the reference shares no closed form with the runs it checks), refusing
-/// to run past `max_events` (then `None`).
-fn exact_run(rod: &Rod, max_events: u64) -> Option<Outcome> {
-    let config = WaveConfig {
-        resolution: Resolution::Exact,
-        precision: Precision::Double,
-        leap_quiet_layers: false,
-        max_events,
-        ..WaveConfig::default()
-    };
-    match simulate(rod, &config) {
-        Ok(o) => Some(o),
-        Err(WaveError::EventLimit { .. }) => None,
-        Err(e) => panic!("exact run failed otherwise than by its event limit: {e}"),
-    }
-}
+use common::{XorShift, exact_run, random_scene};
 
 fn bound(o: &Outcome) -> f64 {
     o.error_bound
@@ -53,20 +35,8 @@ fn random_layered_rods_finish_within_their_bound() {
     let (mut merged, mut merged_checked, mut checked) = (0, 0, 0);
     let start = Instant::now();
     for k in 0..SCENES {
-        let n = 2 + (rng.next() * 7.0) as usize; // 2..=8 layers
-        let layers = (0..n)
-            .map(|_| {
-                let length = rng.uniform(0.2, 1.2);
-                let density = rng.log_uniform(0.1, 10.0);
-                let speed = rng.log_uniform(1.0, 250.0);
-                Layer::elastic(length, density * speed * speed, density)
-            })
-            .collect();
-        let scene = Scene {
-            impact_speed: 1.0,
-            layers,
-            wall_contact: None,
-        };
+        let scene = random_scene(&mut rng, 8, 250.0);
+        let n = scene.layers.len();
         let rod = scene.validate().unwrap();
         let t0 = Instant::now();
         let o = simulate(&rod, &WaveConfig::default())
@@ -85,7 +55,7 @@ fn random_layered_rods_finish_within_their_bound() {
             o.events.unwrap_or(0),
             if was_merged { " (merged)" } else { "" },
         );
-        match exact_run(&rod, EXACT_EVENTS) {
+        match exact_run(&rod, EXACT_EVENTS, false) {
             Some(x) => {
                 checked += 1;
                 merged_checked += usize::from(was_merged);

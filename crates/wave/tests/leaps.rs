@@ -5,28 +5,22 @@
 //! carry must keep the rod's energy after every step.
 
 mod common;
-use common::XorShift;
-use impact_model::{Bilayer, Layer, Outcome, Rod, Scene};
-use impact_wave::{Precision, Resolution, StepKind, WaveConfig, WaveEngine, WaveError, simulate};
+use common::{XorShift, exact_run, random_scene};
+use impact_model::{Bilayer, Outcome, Rod};
+use impact_wave::{Resolution, StepKind, WaveConfig, WaveEngine, WaveError};
 
 /// The loop's events an exact reference may take (a few tenths of a second).
 const EXACT_EVENTS: u64 = 3_000_000;
 
 /// An exact double-precision run, leaping or event by event: its outcome
-/// (with the bound the engine states) and how many events leaps took; `None`
-/// past [`EXACT_EVENTS`] loop steps.
+/// (with the bound the engine states) and how many events leaps took;
+/// `None` past [`EXACT_EVENTS`] loop steps.
 fn exact(rod: &Rod, leap: bool) -> Option<(Outcome, u64)> {
+    let outcome = exact_run(rod, EXACT_EVENTS, leap)?;
     let config = WaveConfig {
         resolution: Resolution::Exact,
-        precision: Precision::Double,
         leap_quiet_layers: leap,
-        max_events: EXACT_EVENTS,
         ..WaveConfig::default()
-    };
-    let outcome = match simulate(rod, &config) {
-        Ok(o) => o,
-        Err(WaveError::EventLimit { .. }) => return None,
-        Err(e) => panic!("an exact run failed otherwise than by its event limit: {e}"),
     };
     let mut engine = WaveEngine::new(rod, config).expect("a valid rod");
     engine.run().expect("it finished once");
@@ -34,22 +28,9 @@ fn exact(rod: &Rod, leap: bool) -> Option<(Outcome, u64)> {
 }
 
 fn random_rod(rng: &mut XorShift) -> Rod {
-    let n = 2 + (rng.next() * 5.0) as usize; // 2..=6 layers
-    let layers = (0..n)
-        .map(|_| {
-            let length = rng.uniform(0.2, 1.2);
-            let density = rng.log_uniform(0.1, 10.0);
-            let speed = rng.log_uniform(1.0, 100.0);
-            Layer::elastic(length, density * speed * speed, density)
-        })
-        .collect();
-    Scene {
-        impact_speed: 1.0,
-        layers,
-        wall_contact: None,
-    }
-    .validate()
-    .expect("a valid random rod")
+    random_scene(rng, 6, 100.0)
+        .validate()
+        .expect("a valid random rod")
 }
 
 /// The paper's stiff-bottom corner, its fast tops, and random rods of two to

@@ -58,3 +58,42 @@ impl XorShift {
         10f64.powf(self.uniform(lo.log10(), hi.log10()))
     }
 }
+
+/// The exact solution in plain double precision, refusing to run past
+/// `max_events` loop steps (then `None`); event by event unless `leap`
+/// (a reference for leaping or merged runs shares no closed form with
+/// them).
+pub fn exact_run(rod: &Rod, max_events: u64, leap: bool) -> Option<Outcome> {
+    let config = WaveConfig {
+        resolution: impact_wave::Resolution::Exact,
+        precision: impact_wave::Precision::Double,
+        leap_quiet_layers: leap,
+        max_events,
+        ..WaveConfig::default()
+    };
+    match simulate(rod, &config) {
+        Ok(o) => Some(o),
+        Err(impact_wave::WaveError::EventLimit { .. }) => None,
+        Err(e) => panic!("exact run failed otherwise than by its event limit: {e}"),
+    }
+}
+
+/// A random rod of 2 to `most_layers` layers, unit impact speed: lengths
+/// uniform in `[0.2, 1.2)`, densities log-uniform in `[0.1, 10)`, wave
+/// speeds log-uniform in `[1, top_speed)`.
+pub fn random_scene(rng: &mut XorShift, most_layers: usize, top_speed: f64) -> impact_model::Scene {
+    let n = 2 + (rng.next() * (most_layers - 1) as f64) as usize;
+    let layers = (0..n)
+        .map(|_| {
+            let length = rng.uniform(0.2, 1.2);
+            let density = rng.log_uniform(0.1, 10.0);
+            let speed = rng.log_uniform(1.0, top_speed);
+            impact_model::Layer::elastic(length, density * speed * speed, density)
+        })
+        .collect();
+    impact_model::Scene {
+        impact_speed: 1.0,
+        layers,
+        wall_contact: None,
+    }
+}

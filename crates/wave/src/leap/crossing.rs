@@ -1,0 +1,163 @@
+//! The closed-form searches of a leap: the first return at which a
+//! geometric sequence crosses a threshold, and counts of a lattice of times.
+
+use crate::real::Real;
+
+/// The smallest `k < kmax` with `c0 + cp q^k >= threshold`, `0 <= q < 1`.
+pub(super) fn first_crossing_positive<R: Real>(
+    c0: R,
+    cp: R,
+    q: R,
+    kmax: u64,
+    threshold: R,
+) -> Option<u64> {
+    if kmax == 0 {
+        return None;
+    }
+    let at = |k: u64| c0 + cp * q.powi(k.min(i32::MAX as u64) as i32);
+    if at(0) >= threshold {
+        return Some(0);
+    }
+    if q == R::zero() {
+        return (kmax > 1 && c0 >= threshold).then_some(1);
+    }
+    // cp >= 0: decreasing from at(0) < threshold: never
+    if cp >= R::zero() || c0 < threshold {
+        return None;
+    }
+    // increasing towards c0 >= threshold: q^k <= (c0 - threshold) / (-cp)
+    let x = (c0 - threshold) / (-cp);
+    let mut k = if x >= R::one() {
+        0
+    } else {
+        let v = (x.ln() / q.ln()).ceil().to_f64();
+        if !(v.is_finite()) || v > kmax as f64 {
+            return None;
+        }
+        v.max(0.0) as u64
+    };
+    while k > 0 && at(k - 1) >= threshold {
+        k -= 1;
+    }
+    while k < kmax && at(k) < threshold {
+        k += 1;
+    }
+    (k < kmax).then_some(k)
+}
+
+/// The smallest `k < kmax` with `c0 + cp q^k >= threshold`, `|q| < 1`.
+pub(super) fn first_crossing<R: Real>(c0: R, cp: R, q: R, kmax: u64, threshold: R) -> Option<u64> {
+    if q >= R::zero() {
+        return first_crossing_positive(c0, cp, q, kmax, threshold);
+    }
+    // even k = 2j: c0 + cp Q^j; odd k = 2j + 1: c0 + cp q Q^j, Q = q^2
+    let big_q = q * q;
+    let even = first_crossing_positive(c0, cp, big_q, kmax.div_ceil(2), threshold).map(|j| 2 * j);
+    let odd = first_crossing_positive(c0, cp * q, big_q, kmax / 2, threshold).map(|j| 2 * j + 1);
+    match (even, odd) {
+        (Some(a), Some(b)) => Some(a.min(b)),
+        (a, b) => a.or(b),
+    }
+}
+
+/// The first `k < kmax` with `f0 + b k + c (q^k - 1) <= 0`, `|q| < 1`.
+pub(super) fn first_nonpositive<R: Real>(f0: R, b: R, c: R, q: R, kmax: u64) -> Option<u64> {
+    if kmax == 0 {
+        return None;
+    }
+    if f0 <= R::zero() {
+        return Some(0);
+    }
+    if q >= R::zero() {
+        return first_nonpositive_positive(f0, b, c, q, kmax);
+    }
+    // parity: k = 2j + r, q^k - 1 = q^r (Q^j - 1) + (q^r - 1), Q = q^2
+    let big_q = q * q;
+    let even = first_nonpositive_positive(f0, b + b, c, big_q, kmax.div_ceil(2)).map(|j| 2 * j);
+    let odd_f0 = f0 + b + c * (q - R::one());
+    let odd = if kmax >= 2 {
+        first_nonpositive_positive(odd_f0, b + b, c * q, big_q, kmax / 2).map(|j| 2 * j + 1)
+    } else {
+        None
+    };
+    match (even, odd) {
+        (Some(a), Some(b)) => Some(a.min(b)),
+        (a, b) => a.or(b),
+    }
+}
+
+/// [`first_nonpositive`] for `0 <= q < 1`: the differences
+/// `b + c q^k (q - 1)` change sign at most once, so the function has at most
+/// two monotone pieces; each is searched by bisection.
+pub(super) fn first_nonpositive_positive<R: Real>(
+    f0: R,
+    b: R,
+    c: R,
+    q: R,
+    kmax: u64,
+) -> Option<u64> {
+    let ln_q = q.ln();
+    let f = |k: u64| f0 + b * R::of(k as f64) + c * (ln_q * R::of(k as f64)).exp_m1();
+    if kmax == 0 {
+        return None;
+    }
+    if f(0) <= R::zero() {
+        return Some(0);
+    }
+    // where the differences change sign: q^k = -b / (c (q - 1))
+    let x = -b / (c * (q - R::one()));
+    let turn = if q > R::zero() && x > R::zero() && x < R::one() {
+        let k = (x.ln() / ln_q).to_f64();
+        if k.is_finite() && k > 0.0 {
+            (k.floor() as u64).min(kmax - 1)
+        } else {
+            0
+        }
+    } else {
+        0
+    };
+    for (lo, hi) in [(0, turn), (turn, kmax - 1)] {
+        if hi < lo || f(hi) > R::zero() {
+            continue;
+        }
+        // monotone on [lo, hi], positive at lo (else found before), not at hi
+        if f(lo) <= R::zero() {
+            return Some(lo);
+        }
+        let (mut a, mut z) = (lo, hi);
+        while z - a > 1 {
+            let mid = a + (z - a) / 2;
+            if f(mid) <= R::zero() {
+                z = mid;
+            } else {
+                a = mid;
+            }
+        }
+        return Some(z);
+    }
+    None
+}
+
+/// `q^k`, for any `k`.
+pub(super) fn pow<R: Real>(q: R, k: u64) -> R {
+    if k <= i32::MAX as u64 {
+        q.powi(k as i32)
+    } else {
+        q.powf(R::of(k as f64))
+    }
+}
+
+/// How many `k >= 0` have `start + k period < end`.
+pub(super) fn count_before<R: Real>(start: R, period: R, end: R) -> u64 {
+    if start >= end {
+        return 0;
+    }
+    let mut n = ((end - start) / period).ceil().to_f64().max(1.0) as u64;
+    while n > 0 && start + R::of((n - 1) as f64) * period >= end {
+        n -= 1;
+    }
+    while start + R::of(n as f64) * period < end {
+        n += 1;
+    }
+    n
+}

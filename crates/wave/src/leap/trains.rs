@@ -1,0 +1,285 @@
+//! Where a leap's fronts go: the trains it sends into the neighbours,
+//! deposited on their lattices in a merged run or spawned front by front
+//! in birth order in an exact one.
+
+use super::Train;
+use super::crossing::{count_before, pow};
+use crate::engine::Tracer;
+use crate::error::WaveError;
+use crate::geometric::sums;
+use crate::lane::{Direction, Lane, MergeRule};
+use crate::real::Real;
+use crate::window::Window;
+use std::cmp::Ordering;
+
+/// Fronts going into one exact lane at the end of a leap, as
+/// [`Tracer::spawn_front`] would take them: what it drops and the merges
+/// it notes are kept for the tracer's ledgers.
+struct Into<'a, R> {
+    lane: &'a mut Lane<R>,
+    window: Window<R>,
+    thr: R,
+    id: u32,
+    /// The jumps added (the layer's base moves by them).
+    total: R,
+    dropped: Vec<(R, R)>,
+    /// Merges of births more than zero apart: `(gap, born)`.
+    merges: Vec<(R, R)>,
+}
+
+impl<R: Real> Into<'_, R> {
+    #[inline(always)]
+    fn put(&mut self, born: R, jump: R) {
+        if jump.abs() < self.thr {
+            if jump != R::zero() {
+                self.dropped.push((born, jump));
+            }
+            return;
+        }
+        self.total += jump;
+        match self.lane.push_exact(born, jump, self.id, self.window) {
+            None => self.id += 1,
+            Some(gap) => {
+                if gap > R::zero() {
+                    self.merges.push((gap, born));
+                }
+            }
+        }
+    }
+}
+
+/// The births of ringing trains round by round: round `k` of every train
+/// (sorted by start), then round `k + 1`; jumps by one product a round.
+fn rounds<R: Real>(rings: &[(usize, Train<R>)], mut put: impl FnMut(R, R)) {
+    let count = rings.iter().map(|t| t.1.count).max().unwrap_or(0);
+    let mut jumps: Vec<R> = rings.iter().map(|t| t.1.c).collect();
+    for k in 0..count {
+        let kk = R::of(k as f64);
+        for ((_, t), jump) in rings.iter().zip(jumps.iter_mut()) {
+            if k < t.count {
+                put(t.start + kk * t.period, *jump);
+                *jump = *jump * t.q;
+            }
+        }
+    }
+}
+
+/// Whether the singles then [`rounds`] come in birth order: singles (sorted)
+/// before the first ring, and rings (sorted, one period) whose starts lie
+/// within a period by more than rounding, so that the rounded births of
+/// round `k` stay before those of round `k + 1`.
+fn in_rounds<R: Real>(singles: &[(usize, Train<R>)], rings: &[(usize, Train<R>)]) -> bool {
+    let (Some(first), Some(last)) = (rings.first(), rings.last()) else {
+        return true;
+    };
+    let period = first.1.period;
+    let end = rings
+        .iter()
+        .map(|t| t.1.start + R::of(t.1.count as f64) * period)
+        .fold(R::zero(), |m, x| if x > m { x } else { m });
+    let rounding = R::of(8.0 * f64::EPSILON) * (end.abs() + period);
+    singles.last().is_none_or(|s| s.1.start <= first.1.start)
+        && rings.iter().all(|t| t.1.period == period)
+        && last.1.start - first.1.start + rounding < period
+}
+
+impl<R: Real> Tracer<R> {
+    /// Deposits a train of fronts into `lane` as its merge rule would, one
+    /// by one: the large ones kept (while the lane keeps any), the rest on
+    /// its lattice with their jump and first moment, the tail under the
+    /// drop threshold dropped and accounted for.
+    pub(super) fn emit(&mut self, lane: usize, train: Train<R>) -> Result<(), WaveError> {
+        if train.count == 0 || train.c == R::zero() {
+            return Ok(());
+        }
+        let mut deposits = std::mem::take(&mut self.deposits);
+        let layer = self.lanes[lane].layer;
+        let dir = self.lanes[lane].direction;
+        let thr = self.layers[layer].drop_strain();
+        let born = |k: u64| train.start + R::of(k as f64) * train.period;
+        let amp = |k: u64| train.c * pow(train.q, k);
+        // alive while above the drop threshold
+        let alive = if train.q == R::zero() {
+            u64::from(train.c.abs() >= thr).min(train.count)
+        } else {
+            self.life(train.c, train.q, thr, 0).min(train.count)
+        };
+        if alive < train.count {
+            // the tail under the threshold, dropped as the loop would drop
+            // it one by one: counted, and its force accounted in closed form
+            let tail = train.count - alive;
+            let aq = train.q.abs();
+            let first = amp(alive).abs();
+            let (s0, s1, _) = sums(aq, tail);
+            let l = self.layers[layer];
+            let d = &mut self.drops;
+            d.truncation.dropped_fronts += tail;
+            d.truncation.dropped_velocity +=
+                (first * s0 * l.wave_speed / self.impact_speed).to_f64();
+            let force = (l.modulus * first * s0).to_f64();
+            d.dropped_force += force;
+            d.dropped_force_time +=
+                (l.modulus * first * (born(alive) * s0 + train.period * s1)).to_f64();
+        }
+        let MergeRule::Lattice {
+            spacing,
+            keep_above,
+            keep_at_most,
+        } = self.lanes[lane].rule
+        else {
+            self.deposits = deposits;
+            self.exact_trains.push((
+                lane,
+                Train {
+                    count: alive,
+                    ..train
+                },
+            ));
+            return Ok(());
+        };
+        let mut k = 0;
+        while k < alive && amp(k).abs() >= keep_above && self.lanes[lane].kept < keep_at_most {
+            self.spawn_front(layer, dir, born(k), amp(k))?;
+            k += 1;
+        }
+        let mut total = R::zero();
+        let mut merged = 0u64;
+        // full cells hold one or two counts of fronts: their sums repeat;
+        // the amplitude at a cell's first front follows by q^len
+        let mut first = amp(k);
+        while k < alive {
+            // the fronts born in one lattice cell [j w, (j + 1) w)
+            let j = (born(k) / spacing).floor();
+            let (lo, hi) = (j * spacing, (j + R::one()) * spacing);
+            let end = (k + count_before(born(k), train.period, hi))
+                .min(alive)
+                .max(k + 1);
+            let len = end - k;
+            self.leap_work += 1;
+            let (s0, s1, _) = self.sums_cached(train.q, len);
+            let step = self.sums_cached(train.q, len + 1).0 - s0; // q^len
+            let jump = first * s0;
+            let moment = first * (born(k) * s0 + train.period * s1);
+            let at_hi = (moment - jump * lo) / spacing;
+            for (at, d) in [(lo, jump - at_hi), (hi, at_hi)] {
+                if d != R::zero() {
+                    deposits.push((lane, at, d));
+                }
+            }
+            total += jump;
+            merged += len;
+            k = end;
+            first = first * step;
+        }
+        match dir {
+            Direction::Up => self.up_base[layer] += total,
+            Direction::Down => self.down_base[layer] += total,
+        }
+        self.drops.truncation.merged_fronts += merged;
+        self.deposits = deposits;
+        Ok(())
+    }
+
+    /// Places the deposits gathered by `emit` into their lanes, one pass a
+    /// lane, and puts the lanes' heads in the queue.
+    pub(super) fn place_deposits(&mut self) -> Result<(), WaveError> {
+        let all = std::mem::take(&mut self.deposits);
+        // lane by lane in increasing order, each lane's deposits in the
+        // order they were gathered (a leap feeds two lanes at most)
+        let mut lanes: Vec<usize> = Vec::with_capacity(2);
+        for &(lane, _, _) in &all {
+            if !lanes.contains(&lane) {
+                lanes.push(lane);
+            }
+        }
+        lanes.sort_unstable();
+        let mut batch = Vec::with_capacity(all.len());
+        for lane in lanes {
+            batch.clear();
+            batch.extend(all.iter().filter(|d| d.0 == lane).map(|d| (d.1, d.2)));
+            self.lanes[lane].place_all(&mut batch);
+            self.reschedule_layer(self.lanes[lane].layer)?;
+        }
+        self.deposits = all;
+        self.deposits.clear();
+        Ok(())
+    }
+
+    /// Spawns the fronts of the trains an exact leap sent into its
+    /// neighbours, lane by lane in birth order, as [`Tracer::spawn_front`]
+    /// would one by one (under the drop threshold dropped, born together
+    /// merged): first the single fronts (from fronts that were going up
+    /// as the leap began), then the ringing trains round by round. That is
+    /// birth order when their starts lie within one period, as a leap's
+    /// do; otherwise (rounding at the edge) the births are sorted first.
+    pub(super) fn place_exact_trains(&mut self) -> Result<(), WaveError> {
+        if self.exact_trains.is_empty() {
+            return Ok(());
+        }
+        let mut trains = std::mem::take(&mut self.exact_trains);
+        trains.sort_by(|a, b| {
+            (a.0, a.1.count > 1)
+                .cmp(&(b.0, b.1.count > 1))
+                .then(a.1.start.partial_cmp(&b.1.start).unwrap_or(Ordering::Equal))
+        });
+        let mut rest = &trains[..];
+        while let Some(&(lane, _)) = rest.first() {
+            let len = rest.iter().take_while(|t| t.0 == lane).count();
+            let (group, next) = rest.split_at(len);
+            rest = next;
+            let singles = group.partition_point(|t| t.1.count <= 1);
+            let (singles, rings) = group.split_at(singles);
+            let births = singles.len() as u64 + rings.iter().map(|t| t.1.count).sum::<u64>();
+            self.leap_work += births;
+            let layer = self.lanes[lane].layer;
+            let MergeRule::Simultaneous { window } = self.lanes[lane].rule else {
+                unreachable!("a merged run's leaps deposit on lattices")
+            };
+            let mut into = Into {
+                lane: &mut self.lanes[lane],
+                window,
+                thr: self.layers[layer].drop_strain,
+                id: self.next_id,
+                total: R::zero(),
+                dropped: Vec::new(),
+                merges: Vec::new(),
+            };
+            into.lane.reserve(births as usize);
+            if in_rounds(singles, rings) {
+                for t in singles {
+                    into.put(t.1.start, t.1.c);
+                }
+                rounds(rings, |born, jump| into.put(born, jump));
+            } else {
+                let mut all: Vec<(R, R)> = singles.iter().map(|t| (t.1.start, t.1.c)).collect();
+                rounds(rings, |born, jump| all.push((born, jump)));
+                all.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap_or(Ordering::Equal));
+                for (born, jump) in all {
+                    into.put(born, jump);
+                }
+            }
+            let Into {
+                id,
+                total,
+                dropped,
+                merges,
+                ..
+            } = into;
+            self.next_id = id;
+            match self.lanes[lane].direction {
+                Direction::Up => self.up_base[layer] += total,
+                Direction::Down => self.down_base[layer] += total,
+            }
+            for (born, jump) in dropped {
+                self.drop_front(layer, born, jump);
+            }
+            for (gap, at) in merges {
+                self.note_combined(gap, at);
+            }
+            self.reschedule_layer(layer)?;
+        }
+        trains.clear();
+        self.exact_trains = trains;
+        Ok(())
+    }
+}
