@@ -134,8 +134,9 @@ pub struct WaveConfig {
     pub resolution: Resolution,
     /// The arithmetic. Default [`Precision::Checked`].
     pub precision: Precision,
-    /// Refuse to run past this many events in any one run (a run that
-    /// cannot finish). With automatic resolution no scene of up to eight
+    /// Refuse to run past this much work in any one run (a run that
+    /// cannot finish): loop iterations, and what leaps do in their stead
+    /// (the fronts they spawn, the lattice cells they fill). With automatic resolution no scene of up to eight
     /// layers and transit-time ratios up to `10^6` comes near it.
     pub max_events: u64,
     /// Refuse to run past `max_time_factor * sum(t_i)`.
