@@ -382,10 +382,7 @@ impl<R: Real> Tracer<R> {
             folded_reflections: 0,
             leaped: 0,
             leap_work: 0,
-            leap_after: crate::leap::first_leaps(
-                &layers.iter().map(|l| l.transit_time).collect::<Vec<_>>(),
-                fold,
-            ),
+            leap_after: crate::leap::first_leaps(&layers, fold),
             leap_retry: vec![0; n],
             deposits: Vec::new(),
             exact_trains: Vec::new(),

@@ -263,29 +263,15 @@ impl<R: Real> Lane<R> {
     pub fn push(&mut self, born: R, jump: R, id: u32) -> Pushed<R> {
         match self.rule {
             MergeRule::Simultaneous { window } => {
-                let len = self.fronts.len();
-                if let Some(last) = self.fronts.back_mut()
-                    && born - last.born <= window.at(born)
-                {
-                    last.jump += jump;
-                    return Pushed::Merged {
-                        id: last.id,
+                let was_empty = self.fronts.is_empty();
+                match self.push_exact(born, jump, id, window) {
+                    Some((gap, id)) => Pushed::Merged {
+                        id,
                         moved_head: false,
                         beyond_simultaneity: false,
-                        gap: born - last.born,
-                    };
-                }
-                self.fronts.push_back(Front {
-                    born,
-                    jump,
-                    id,
-                    kept: false,
-                });
-                if len == 0 {
-                    self.head_at = Some(self.arrival_of(born));
-                }
-                Pushed::New {
-                    was_empty: len == 0,
+                        gap,
+                    },
+                    None => Pushed::New { was_empty },
                 }
             }
             MergeRule::Lattice {
@@ -301,16 +287,17 @@ impl<R: Real> Lane<R> {
         self.fronts.reserve(more);
     }
 
-    /// [`Lane::push`] on an exact lane whose `window` the caller holds (a
-    /// leap's thousands of fronts, inlined): `None` when the front is new,
-    /// else the gap to the newest front it was merged into.
+    /// [`Lane::push`] on an exact lane, its `window` given (a leap's
+    /// thousands of fronts take it once): `None` when the front is new,
+    /// else the gap to the newest front it was merged into, and that
+    /// front's id.
     #[inline(always)]
-    pub fn push_exact(&mut self, born: R, jump: R, id: u32, window: Window<R>) -> Option<R> {
+    pub fn push_exact(&mut self, born: R, jump: R, id: u32, window: Window<R>) -> Option<(R, u32)> {
         if let Some(last) = self.fronts.back_mut() {
             let gap = born - last.born;
             if gap <= window.at(born) {
                 last.jump += jump;
-                return Some(gap);
+                return Some((gap, last.id));
             }
         } else {
             self.head_at = Some(self.arrival_of(born));

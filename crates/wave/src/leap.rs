@@ -28,7 +28,7 @@
 //! round trips is `a q^k` instead of `k` products, its birth `tau + k P`
 //! instead of `2 k` sums, and the wall impulse a geometric sum.
 
-use crate::engine::Tracer;
+use crate::engine::{LayerConst, Tracer};
 use crate::error::WaveError;
 use crate::geometric::sums;
 use crate::lane::{Direction, Front, Lane};
@@ -51,16 +51,17 @@ pub(crate) const LEAST_TRANSITS: f64 = 8.0;
 /// transits (what a leap sends it would come back too soon) or the layer is
 /// a folded top; else from the start. Without this every boundary event of
 /// such a layer tried, at a tenth of a small point's time.
-pub(crate) fn first_leaps<R: Real>(transits: &[R], folded_top: bool) -> Vec<R> {
-    let n = transits.len();
+pub(crate) fn first_leaps<R: Real>(layers: &[LayerConst<R>], folded_top: bool) -> Vec<R> {
+    let n = layers.len();
+    let transits = |i: usize| layers[i].transit_time;
     (0..n)
         .map(|i| {
-            let least = R::of(LEAST_TRANSITS) * transits[i];
+            let least = R::of(LEAST_TRANSITS) * transits(i);
             let neighbours = [i.checked_sub(1), (i + 1 < n).then_some(i + 1)];
             let too_soon = neighbours
                 .into_iter()
                 .flatten()
-                .any(|j| transits[j] + transits[j] < least);
+                .any(|j| transits(j) + transits(j) < least);
             if n < 2 || too_soon || (folded_top && i == n - 1) {
                 -R::neg_infinity()
             } else {

@@ -15,7 +15,7 @@ use std::cmp::Ordering;
 /// Fronts going into one exact lane at the end of a leap, as
 /// [`Tracer::spawn_front`] would take them: what it drops and the merges
 /// it notes are kept for the tracer's ledgers.
-struct Into<'a, R> {
+struct Spawning<'a, R> {
     lane: &'a mut Lane<R>,
     window: Window<R>,
     thr: R,
@@ -27,7 +27,7 @@ struct Into<'a, R> {
     merges: Vec<(R, R)>,
 }
 
-impl<R: Real> Into<'_, R> {
+impl<R: Real> Spawning<'_, R> {
     #[inline(always)]
     fn put(&mut self, born: R, jump: R) {
         if jump.abs() < self.thr {
@@ -39,7 +39,7 @@ impl<R: Real> Into<'_, R> {
         self.total += jump;
         match self.lane.push_exact(born, jump, self.id, self.window) {
             None => self.id += 1,
-            Some(gap) => {
+            Some((gap, _)) => {
                 if gap > R::zero() {
                     self.merges.push((gap, born));
                 }
@@ -235,7 +235,7 @@ impl<R: Real> Tracer<R> {
             let MergeRule::Simultaneous { window } = self.lanes[lane].rule else {
                 unreachable!("a merged run's leaps deposit on lattices")
             };
-            let mut into = Into {
+            let mut into = Spawning {
                 lane: &mut self.lanes[lane],
                 window,
                 thr: self.layers[layer].drop_strain,
@@ -258,7 +258,7 @@ impl<R: Real> Tracer<R> {
                     into.put(born, jump);
                 }
             }
-            let Into {
+            let Spawning {
                 id,
                 total,
                 dropped,
