@@ -352,8 +352,61 @@ impl<R: Real> Lane<R> {
         let k = (born / spacing).floor();
         let (lo, hi) = (k * spacing, (k + R::one()) * spacing);
         let f = (born - lo) / spacing;
+        let (at_lo, at_hi) = (jump * (R::one() - f), jump * f);
+        // The usual places, without a search: births only move forward, so
+        // the newest front sits before `lo`, on it, or on `hi` (a deposit in
+        // the cell of the one before). The same result as `add_at` twice.
+        let n = self.fronts.len();
+        if let Some(last) = self.fronts.back_mut()
+            && !last.kept
+            && at_lo != R::zero()
+            && at_hi != R::zero()
+        {
+            if last.born == lo {
+                last.jump += at_lo;
+                self.fronts.push_back(Front {
+                    born: hi,
+                    jump: at_hi,
+                    id,
+                    kept: false,
+                });
+                return true;
+            }
+            if last.born == hi {
+                // the front before it decides where `lo` goes
+                let before = n.checked_sub(2).map(|i| {
+                    let f = &self.fronts[i];
+                    (f.born, f.kept)
+                });
+                let lo_merges = match before {
+                    Some((born, kept)) if born == lo && !kept => Some(true),
+                    Some((born, _)) if born < lo => Some(false),
+                    None => Some(false),
+                    Some(_) => None,
+                };
+                if let Some(lo_merges) = lo_merges {
+                    if let Some(last) = self.fronts.back_mut() {
+                        last.jump += at_hi;
+                    }
+                    if lo_merges {
+                        self.fronts[n - 2].jump += at_lo;
+                    } else {
+                        self.fronts.insert(
+                            n - 1,
+                            Front {
+                                born: lo,
+                                jump: at_lo,
+                                id,
+                                kept: false,
+                            },
+                        );
+                    }
+                    return !lo_merges;
+                }
+            }
+        }
         let mut inserted = false;
-        for (at, d) in [(lo, jump * (R::one() - f)), (hi, jump * f)] {
+        for (at, d) in [(lo, at_lo), (hi, at_hi)] {
             if d != R::zero() {
                 inserted |= self.add_at(at, d, id, false);
             }
@@ -423,25 +476,35 @@ impl<R: Real> Lane<R> {
     /// was inserted. The place is among the newest fronts: births only move
     /// forward, and lattice points by at most one spacing.
     fn add_at(&mut self, at: R, d: R, id: u32, kept: bool) -> bool {
-        let n = self.fronts.len();
-        let mut i = n;
-        while i > 0 && self.fronts[i - 1].born > at {
-            i -= 1;
+        let front = Front {
+            born: at,
+            jump: d,
+            id,
+            kept,
+        };
+        // the usual places first: behind the newest front, or on it (a
+        // deposit's upper point, and most lower ones)
+        match self.fronts.back_mut() {
+            None => {
+                self.fronts.push_back(front);
+                return true;
+            }
+            Some(last) if last.born < at => {
+                self.fronts.push_back(front);
+                return true;
+            }
+            Some(last) if last.born == at && !kept && !last.kept => {
+                last.jump += d;
+                return false;
+            }
+            Some(_) => {}
         }
-
+        let i = self.fronts.len() - self.fronts.iter().rev().take_while(|f| f.born > at).count();
         if !kept && i > 0 && self.fronts[i - 1].born == at && !self.fronts[i - 1].kept {
             self.fronts[i - 1].jump += d;
             return false;
         }
-        self.fronts.insert(
-            i,
-            Front {
-                born: at,
-                jump: d,
-                id,
-                kept,
-            },
-        );
+        self.fronts.insert(i, front);
         true
     }
 }

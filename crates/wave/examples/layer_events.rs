@@ -1,0 +1,46 @@
+//! Which boundaries a merged run's events fall on (a diagnostic for slow
+//! rods): `layer_events SCENE.json [PER_TRANSIT [PER_LONGEST [noleap]]]`.
+use impact_model::Scene;
+use impact_wave::{Resolution, StepKind, WaveConfig, WaveEngine};
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let text = std::fs::read_to_string(&args[1]).expect("a scene file");
+    let scene: Scene = serde_json::from_str(&text).expect("a scene");
+    let rod = scene.validate().expect("a valid scene");
+    let p = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(0.2);
+    let l = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(4e-3);
+    let config = WaveConfig {
+        resolution: Resolution::Merged {
+            per_transit: p,
+            per_longest: l,
+        },
+        leap_quiet_layers: args.get(4).is_none_or(|s| s != "noleap"),
+        ..WaveConfig::default()
+    };
+    let mut engine = WaveEngine::new(&rod, config).expect("a valid rod");
+    let n = rod.layers().len();
+    let (mut at, mut leaps, mut leapt) = (vec![0u64; n + 2], vec![0u64; n], vec![0u64; n]);
+    let start = std::time::Instant::now();
+    loop {
+        let step = engine.step().expect("a step");
+        match step.kind {
+            StepKind::Interface(b) => at[b] += 1,
+            StepKind::Top => at[n] += 1,
+            StepKind::Wall { .. } | StepKind::Reconnected => at[0] += 1,
+            StepKind::Leap { layer, events } => {
+                leaps[layer] += 1;
+                leapt[layer] += events;
+            }
+            StepKind::Stopped(_) => break,
+        }
+    }
+    println!(
+        "{:.2} s, {} steps, e {}",
+        start.elapsed().as_secs_f64(),
+        engine.steps(),
+        engine.restitution()
+    );
+    println!("boundary events (0 wall, {n} top): {at:?}");
+    println!("leaps per layer: {leaps:?}\nevents leapt per layer: {leapt:?}");
+}
