@@ -356,55 +356,53 @@ impl<R: Real> Lane<R> {
         // The usual places, without a search: births only move forward, so
         // the newest front sits before `lo`, on it, or on `hi` (a deposit in
         // the cell of the one before). The same result as `add_at` twice.
+        if at_lo == R::zero() || at_hi == R::zero() {
+            return self.deposit_apart(lo, at_lo, hi, at_hi, id);
+        }
+        let new = |born, jump| Front {
+            born,
+            jump,
+            id,
+            kept: false,
+        };
         let n = self.fronts.len();
-        if let Some(last) = self.fronts.back_mut()
-            && !last.kept
-            && at_lo != R::zero()
-            && at_hi != R::zero()
-        {
-            if last.born == lo {
-                last.jump += at_lo;
-                self.fronts.push_back(Front {
-                    born: hi,
-                    jump: at_hi,
-                    id,
-                    kept: false,
-                });
+        let shape = |i: usize| {
+            let f: &Front<R> = &self.fronts[i];
+            (f.born, f.kept)
+        };
+        let last = n.checked_sub(1).map(shape);
+        let before = n.checked_sub(2).map(shape);
+        match (before, last) {
+            // empty, or ending before `lo`
+            (_, None) => {}
+            (_, Some((born, _))) if born < lo => {}
+            (_, Some((born, false))) if born == lo => {
+                self.fronts[n - 1].jump += at_lo;
+                self.fronts.push_back(new(hi, at_hi));
                 return true;
             }
-            if last.born == hi {
-                // the front before it decides where `lo` goes
-                let before = n.checked_sub(2).map(|i| {
-                    let f = &self.fronts[i];
-                    (f.born, f.kept)
-                });
-                let lo_merges = match before {
-                    Some((born, kept)) if born == lo && !kept => Some(true),
-                    Some((born, _)) if born < lo => Some(false),
-                    None => Some(false),
-                    Some(_) => None,
-                };
-                if let Some(lo_merges) = lo_merges {
-                    if let Some(last) = self.fronts.back_mut() {
-                        last.jump += at_hi;
-                    }
-                    if lo_merges {
-                        self.fronts[n - 2].jump += at_lo;
-                    } else {
-                        self.fronts.insert(
-                            n - 1,
-                            Front {
-                                born: lo,
-                                jump: at_lo,
-                                id,
-                                kept: false,
-                            },
-                        );
-                    }
-                    return !lo_merges;
-                }
+            (Some((b, false)), Some((born, false))) if born == hi && b == lo => {
+                self.fronts[n - 1].jump += at_hi;
+                self.fronts[n - 2].jump += at_lo;
+                return false;
             }
+            (b, Some((born, false))) if born == hi && b.is_none_or(|(b, _)| b < lo) => {
+                // `lo` goes between the two (or first)
+                self.fronts[n - 1].jump += at_hi;
+                let last = self.fronts.pop_back();
+                self.fronts.push_back(new(lo, at_lo));
+                self.fronts.extend(last);
+                return true;
+            }
+            _ => return self.deposit_apart(lo, at_lo, hi, at_hi, id),
         }
+        self.fronts.push_back(new(lo, at_lo));
+        self.fronts.push_back(new(hi, at_hi));
+        true
+    }
+
+    /// A deposit's two parts placed one by one, each where it belongs.
+    fn deposit_apart(&mut self, lo: R, at_lo: R, hi: R, at_hi: R, id: u32) -> bool {
         let mut inserted = false;
         for (at, d) in [(lo, at_lo), (hi, at_hi)] {
             if d != R::zero() {
@@ -562,6 +560,85 @@ mod tests {
         assert_eq!(lane.kept, 1);
         while lane.pop().is_some() {}
         assert_eq!(lane.kept, 0);
+    }
+
+    /// The lattice rule written out the plain way, as the oracle of the
+    /// deposit's shortcuts: each part of a deposit goes to its lattice
+    /// point, found by a search from the newest front, and merges with an
+    /// unkept front there or is inserted after every front born no later.
+    fn plain_lattice_push(lane: &mut Vec<Front<f64>>, kept: &mut usize, born: f64, jump: f64) {
+        let place = |lane: &mut Vec<Front<f64>>, at: f64, d: f64, keep: bool| {
+            let i = lane.iter().rposition(|f| f.born <= at).map_or(0, |i| i + 1);
+            match lane.get_mut(i.wrapping_sub(1)) {
+                Some(f) if !keep && f.born == at && !f.kept => f.jump += d,
+                _ => lane.insert(
+                    i,
+                    Front {
+                        born: at,
+                        jump: d,
+                        id: 0,
+                        kept: keep,
+                    },
+                ),
+            }
+        };
+        if jump.abs() >= 1.0 && *kept < 1 {
+            *kept += 1;
+            place(lane, born, jump, true);
+            return;
+        }
+        let k = (born / 0.25).floor();
+        let (lo, hi) = (k * 0.25, (k + 1.0) * 0.25);
+        let f = (born - lo) / 0.25;
+        for (at, d) in [(lo, jump * (1.0 - f)), (hi, jump * f)] {
+            if d != 0.0 {
+                place(lane, at, d, false);
+            }
+        }
+    }
+
+    proptest::proptest! {
+        /// Deposits on a lattice lane, among them large fronts kept where
+        /// they were born, births on lattice points and heads taken in
+        /// between (a fast layer's lane holds two or three fronts), give
+        /// the plain rule's fronts bit for bit.
+        #[test]
+        fn lattice_deposits_are_the_plain_rules(
+            steps in proptest::collection::vec((0u8..7, -3.0f64..3.0), 1..80)
+        ) {
+            let mut lane = Lane::new(0, Direction::Up, 2.0, quarter_lattice());
+            let (mut plain, mut kept) = (Vec::new(), 0);
+            let mut born = 1.0;
+            for (step, jump) in steps {
+                // births move forward: by nothing, to the next lattice
+                // point, or by parts of a cell; or the head arrives
+                born = match step {
+                    0 => born,
+                    1 => ((born / 0.25).floor() + 1.0) * 0.25,
+                    6 => {
+                        let head = lane.pop().map(|f| (f.born, f.jump, f.kept));
+                        let want = (!plain.is_empty()).then(|| plain.remove(0));
+                        if want.is_some_and(|f: Front<f64>| f.kept) {
+                            kept -= 1;
+                        }
+                        proptest::prop_assert_eq!(head, want.map(|f| (f.born, f.jump, f.kept)));
+                        continue;
+                    }
+                    g => born + f64::from(g) * 0.07,
+                };
+                lane.push(born, jump, 0);
+                plain_lattice_push(&mut plain, &mut kept, born, jump);
+                let got: Vec<(f64, f64, bool)> =
+                    lane.fronts.iter().map(|f| (f.born, f.jump, f.kept)).collect();
+                let want: Vec<(f64, f64, bool)> =
+                    plain.iter().map(|f| (f.born, f.jump, f.kept)).collect();
+                proptest::prop_assert_eq!(got, want);
+                proptest::prop_assert_eq!(
+                    lane.head_arrival(),
+                    plain.first().map(|f| f.born + 2.0)
+                );
+            }
+        }
     }
 
     #[test]
