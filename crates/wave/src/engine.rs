@@ -219,6 +219,12 @@ pub struct Tracer<R: Real> {
     pub(crate) exact_trains: Vec<(usize, Train<R>)>,
     /// Recent geometric sums `(q, n) -> (s0, s1, s2)`.
     pub(crate) sums_memo: Vec<(R, u64, (R, R, R))>,
+    /// A leap's buffers, kept for the next.
+    pub(crate) scratch: crate::leap::LeapScratch<R>,
+    /// The last `(|q|, ln |q|)` a leap needed.
+    pub(crate) ln_memo: Option<(R, R)>,
+    /// One lane's deposits as a leap places them, kept for the next.
+    pub(crate) batch: Vec<(R, R)>,
     pub(crate) next_id: u32,
     pub(crate) now: R,
     stopped: Option<StopReason>,
@@ -387,6 +393,9 @@ impl<R: Real> Tracer<R> {
             deposits: Vec::new(),
             exact_trains: Vec::new(),
             sums_memo: Vec::new(),
+            scratch: Default::default(),
+            ln_memo: None,
+            batch: Vec::new(),
             next_id: 0,
             now: R::zero(),
             stopped: None,

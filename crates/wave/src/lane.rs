@@ -79,6 +79,8 @@ pub struct Lane<R> {
     head_at: Option<R>,
     /// Kept (not deposited) fronts in a lattice lane.
     pub kept: usize,
+    /// A buffer for leaps' merges, kept from one to the next.
+    spare: Vec<Front<R>>,
 }
 
 /// What happened to a pushed front.
@@ -110,6 +112,7 @@ impl<R: Real> Lane<R> {
             fronts: VecDeque::new(),
             head_at: None,
             kept: 0,
+            spare: Vec::new(),
         }
     }
 
@@ -129,7 +132,7 @@ impl<R: Real> Lane<R> {
     /// four-layer rod, `t2/t1 = 70`), and a leap costs one train per front.
     /// The merged fronts move only within a cell, and never earlier than
     /// the cell's first birth, so no arrival moves into the past.
-    pub fn set_fronts(&mut self, fronts: Vec<Front<R>>) {
+    pub fn set_fronts(&mut self, fronts: &[Front<R>]) {
         self.fronts.clear();
         self.kept = 0;
         let MergeRule::Lattice {
@@ -146,9 +149,10 @@ impl<R: Real> Lane<R> {
             self.refresh_head();
             return;
         };
-        let mut cell: Vec<Front<R>> = Vec::new();
+        let mut cell = std::mem::take(&mut self.spare);
+        cell.clear();
         let mut cell_index = R::neg_infinity();
-        for f in fronts {
+        for &f in fronts {
             let keep = f.jump.abs() >= keep_above && self.kept < keep_at_most;
             let index = (f.born / spacing).floor();
             if keep || index != cell_index {
@@ -164,6 +168,7 @@ impl<R: Real> Lane<R> {
             }
         }
         self.flush_cell(&mut cell);
+        self.spare = cell;
         self.refresh_head();
     }
 
@@ -435,7 +440,9 @@ impl<R: Real> Lane<R> {
                 .all(|(a, b)| a.born != b.born || a.kept || b.kept),
             "a lattice lane holds two unkept fronts born together"
         );
-        let newer: Vec<Front<R>> = self.fronts.drain(older..).collect();
+        let mut newer = std::mem::take(&mut self.spare);
+        newer.clear();
+        newer.extend(self.fronts.drain(older..));
         let merged = &mut self.fronts;
         let mut news = deposits.iter().copied().peekable();
         let deposit = |merged: &mut VecDeque<Front<R>>, at: R, d: R| match merged.back_mut() {
@@ -447,7 +454,7 @@ impl<R: Real> Lane<R> {
                 kept: false,
             }),
         };
-        for f in newer {
+        for &f in &newer {
             while let Some(&(at, d)) = news.peek() {
                 if at > f.born {
                     break;
@@ -466,6 +473,7 @@ impl<R: Real> Lane<R> {
         for (at, d) in news {
             deposit(merged, at, d);
         }
+        self.spare = newer;
         self.refresh_head();
     }
 
@@ -685,7 +693,7 @@ mod tests {
             (1.6, 2.0),
             (1.9, 0.05),
         ];
-        let fronts = given
+        let fronts: Vec<Front<f64>> = given
             .iter()
             .enumerate()
             .map(|(i, &(born, jump))| Front {
@@ -695,7 +703,7 @@ mod tests {
                 kept: false,
             })
             .collect();
-        lane.set_fronts(fronts);
+        lane.set_fronts(&fronts);
         let got: Vec<(f64, f64)> = lane.fronts.iter().map(|f| (f.born, f.jump)).collect();
         let sum = |v: &[(f64, f64)]| v.iter().map(|f| f.1).sum::<f64>();
         let moment = |v: &[(f64, f64)]| v.iter().map(|f| f.0 * f.1).sum::<f64>();

@@ -95,6 +95,40 @@ struct Ends<R> {
     above: Option<(usize, R)>,
 }
 
+/// A leap's quiet window and the layer's times.
+#[derive(Debug, Clone, Copy)]
+struct Quiet<R> {
+    /// Now, the layer's transit and round trip, the shortest leap worth
+    /// taking, and the end of the window.
+    t: R,
+    ti: R,
+    period: R,
+    least: R,
+    horizon: R,
+}
+
+/// Buffers a leap fills, kept by the tracer from one leap to the next.
+#[derive(Debug, Clone)]
+pub(crate) struct LeapScratch<R> {
+    phases: Vec<Phase<R>>,
+    /// The layer's fronts when the leap ends, going up and down.
+    up: Vec<Front<R>>,
+    down: Vec<Front<R>>,
+    /// At the wall: `(first arrival, jump, count)` of each phase.
+    bottom_arrivals: Vec<(R, R, u64)>,
+}
+
+impl<R> Default for LeapScratch<R> {
+    fn default() -> Self {
+        Self {
+            phases: Vec::new(),
+            up: Vec::new(),
+            down: Vec::new(),
+            bottom_arrivals: Vec::new(),
+        }
+    }
+}
+
 /// A train of fronts: `c q^k` born at `start + k period`, `k < count`.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Train<R> {
@@ -163,7 +197,43 @@ impl<R: Real> Tracer<R> {
             return Ok(None);
         }
         let ends = self.ends(i);
-        let mut phases = self.phases(i, ti, ends);
+        // the leap's buffers are kept from one leap to the next (allocating
+        // them afresh was a tenth of a short leap's work)
+        let mut scratch = std::mem::take(&mut self.scratch);
+        let quiet = Quiet {
+            t,
+            ti,
+            period,
+            least,
+            horizon,
+        };
+        let leapt = self.leap_over(i, quiet, ends, &mut scratch);
+        self.scratch = scratch;
+        leapt
+    }
+
+    /// The leap itself, over the quiet window found by [`Tracer::leap`].
+    fn leap_over(
+        &mut self,
+        i: usize,
+        quiet: Quiet<R>,
+        ends: Ends<R>,
+        scratch: &mut LeapScratch<R>,
+    ) -> Result<Option<u64>, WaveError> {
+        let Quiet {
+            t,
+            ti,
+            period,
+            least,
+            mut horizon,
+        } = quiet;
+        let LeapScratch {
+            phases,
+            up: fronts_up,
+            down: fronts_down,
+            bottom_arrivals,
+        } = scratch;
+        self.phases(i, ti, ends, phases);
         if phases.is_empty() {
             return Ok(None);
         }
@@ -171,7 +241,7 @@ impl<R: Real> Tracer<R> {
         let q = ends.bottom * ends.top;
         if i == 0 {
             self.advance_wall(t);
-            horizon = horizon.min(self.wall_stop(&phases, q, period, horizon));
+            horizon = horizon.min(self.wall_stop(phases, q, period, horizon));
             if horizon - t < least {
                 // a decision is near: no leap until the loop has taken it,
                 // and no try before the loop has done as many events as
@@ -186,14 +256,15 @@ impl<R: Real> Tracer<R> {
         }
         let thr = self.layers[i].drop_strain();
         let mut events = 0u64;
-        let mut fronts: (Vec<Front<R>>, Vec<Front<R>>) = (Vec::new(), Vec::new());
-        let mut bottom_arrivals: Vec<(R, R, u64)> = Vec::new();
+        fronts_up.clear();
+        fronts_down.clear();
+        bottom_arrivals.clear();
         let (mut up_sum, mut down_sum) = (R::zero(), R::zero());
-        for p in &phases {
+        for p in phases.iter() {
             // the pending arrival at the top of a front going up
             if let Some((u, d)) = p.top {
                 if u >= horizon {
-                    fronts.0.push(self.front(u - ti, d));
+                    fronts_up.push(self.front(u - ti, d));
                     continue;
                 }
                 events += 1;
@@ -222,7 +293,7 @@ impl<R: Real> Tracer<R> {
                 .min(life_down)
                 .min(life_up + 1);
             if nb == 0 {
-                fronts.1.push(self.front(p.tau - ti, p.amp));
+                fronts_down.push(self.front(p.tau - ti, p.amp));
                 continue;
             }
             let nt = count_before(p.tau + ti, period, horizon)
@@ -266,16 +337,16 @@ impl<R: Real> Tracer<R> {
                 if back.abs() < thr {
                     self.drop_front(i, last + ti, back);
                 } else {
-                    fronts.1.push(self.front(last + ti, back));
+                    fronts_down.push(self.front(last + ti, back));
                 }
             } else if going_up.abs() < thr {
                 self.drop_front(i, last, going_up);
             } else {
-                fronts.0.push(self.front(last, going_up));
+                fronts_up.push(self.front(last, going_up));
             }
         }
         if i == 0 {
-            self.wall_after(&bottom_arrivals, q, period);
+            self.wall_after(bottom_arrivals, q, period);
             self.schedule_landing()?;
         }
         self.leap_work += phases.len() as u64;
@@ -283,7 +354,7 @@ impl<R: Real> Tracer<R> {
         self.down_base[i] += down_sum;
         self.place_deposits()?;
         self.place_exact_trains()?;
-        self.rebuild(i, fronts)?;
+        self.rebuild(i, fronts_up, fronts_down)?;
         self.leaped += events;
         Ok(Some(events))
     }
@@ -374,11 +445,13 @@ impl<R: Real> Tracer<R> {
     }
 
     /// The fronts of layer `i` as phases.
-    fn phases(&self, i: usize, ti: R, ends: Ends<R>) -> Vec<Phase<R>> {
+    fn phases(&self, i: usize, ti: R, ends: Ends<R>, phases: &mut Vec<Phase<R>>) {
         // (a folded lane is never leapt)
         let up = &self.lanes[Lane::<R>::index(i, Direction::Up)];
         let down = &self.lanes[Lane::<R>::index(i, Direction::Down)];
-        down.fronts()
+        phases.clear();
+        let fronts = down
+            .fronts()
             .iter()
             .map(|f| Phase {
                 tau: f.born + ti,
@@ -392,8 +465,8 @@ impl<R: Real> Tracer<R> {
                     amp: ends.top * f.jump,
                     top: Some((u, f.jump)),
                 }
-            }))
-            .collect()
+            }));
+        phases.extend(fronts);
     }
 
     /// A front for a rebuilt lane.
@@ -408,7 +481,7 @@ impl<R: Real> Tracer<R> {
 
     /// How many round trips a front of jump `a` lives (counted from `from`)
     /// before it falls under the drop threshold `thr`.
-    fn life(&self, a: R, q: R, thr: R, from: u64) -> u64 {
+    fn life(&mut self, a: R, q: R, thr: R, from: u64) -> u64 {
         if a.abs() < thr && from == 0 {
             return 0;
         }
@@ -419,17 +492,31 @@ impl<R: Real> Tracer<R> {
         if aq >= R::one() {
             return u64::MAX;
         }
-        let k = ((thr / a.abs()).ln() / aq.ln()).to_f64();
+        // a leap's trains share one ratio: its logarithm is kept
+        let ln_q = match self.ln_memo {
+            Some((q, ln)) if q == aq => ln,
+            _ => {
+                let ln = aq.ln();
+                self.ln_memo = Some((aq, ln));
+                ln
+            }
+        };
+        let k = ((thr / a.abs()).ln() / ln_q).to_f64();
         if !k.is_finite() || k < 0.0 {
             return from.max(if a.abs() >= thr { 1 } else { 0 });
         }
         // the first integer above k, unless k is so near an integer that
         // the logarithms' rounding could decide: then count with powers
-        // (the common case needs none; they were half of a leap's time)
-        if (k - k.round()).abs() > 1e-9 * k.max(1.0) {
-            return (k.floor() as u64 + 1).max(from);
+        // (the common case needs none; they were half of a leap's time).
+        // (`f64::floor` and `round` are calls into libm on the baseline
+        // target; the distance to the nearest integer is `min(f, 1 - f)`
+        // of the fraction `f`, exactly `|k - round(k)|`.)
+        let whole = <f64 as Real>::floor(k);
+        let fraction = k - whole;
+        if fraction.min(1.0 - fraction) > 1e-9 * k.max(1.0) {
+            return (whole as u64 + 1).max(from);
         }
-        let mut k = k.floor().max(0.0) as u64;
+        let mut k = whole.max(0.0) as u64;
         // the first k with |a| |q|^k < thr
         while k > 0 && a.abs() * pow(aq, k - 1) < thr {
             k -= 1;
@@ -444,7 +531,8 @@ impl<R: Real> Tracer<R> {
     fn rebuild(
         &mut self,
         i: usize,
-        (mut up, mut down): (Vec<Front<R>>, Vec<Front<R>>),
+        up: &mut [Front<R>],
+        down: &mut [Front<R>],
     ) -> Result<(), WaveError> {
         let by_birth =
             |a: &Front<R>, b: &Front<R>| a.born.partial_cmp(&b.born).unwrap_or(Ordering::Equal);
@@ -452,7 +540,7 @@ impl<R: Real> Tracer<R> {
         down.sort_by(by_birth);
         let ui = Lane::<R>::index(i, Direction::Up);
         let di = Lane::<R>::index(i, Direction::Down);
-        for (index, fronts) in [(ui, up), (di, down)] {
+        for (index, fronts) in [(ui, &*up), (di, &*down)] {
             self.lanes[index].set_fronts(fronts);
             self.reschedule_layer(i)?;
         }

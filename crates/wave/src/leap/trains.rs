@@ -193,7 +193,7 @@ impl<R: Real> Tracer<R> {
             }
         }
         lanes.sort_unstable();
-        let mut batch = Vec::with_capacity(all.len());
+        let mut batch = std::mem::take(&mut self.batch);
         for lane in lanes {
             batch.clear();
             batch.extend(all.iter().filter(|d| d.0 == lane).map(|d| (d.1, d.2)));
@@ -202,6 +202,7 @@ impl<R: Real> Tracer<R> {
         }
         self.deposits = all;
         self.deposits.clear();
+        self.batch = batch;
         Ok(())
     }
 
