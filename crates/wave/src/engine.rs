@@ -225,6 +225,8 @@ pub struct Tracer<R: Real> {
     pub(crate) ln_memo: Option<(R, R)>,
     /// One lane's deposits as a leap places them, kept for the next.
     pub(crate) batch: Vec<(R, R)>,
+    /// Fronts a lane merges as a leap places them, kept for the next.
+    pub(crate) spare_fronts: Vec<crate::lane::Front<R>>,
     pub(crate) next_id: u32,
     pub(crate) now: R,
     stopped: Option<StopReason>,
@@ -396,6 +398,7 @@ impl<R: Real> Tracer<R> {
             scratch: Default::default(),
             ln_memo: None,
             batch: Vec::new(),
+            spare_fronts: Vec::new(),
             next_id: 0,
             now: R::zero(),
             stopped: None,

@@ -79,8 +79,6 @@ pub struct Lane<R> {
     head_at: Option<R>,
     /// Kept (not deposited) fronts in a lattice lane.
     pub kept: usize,
-    /// A buffer for leaps' merges, kept from one to the next.
-    spare: Vec<Front<R>>,
 }
 
 /// What happened to a pushed front.
@@ -112,7 +110,6 @@ impl<R: Real> Lane<R> {
             fronts: VecDeque::new(),
             head_at: None,
             kept: 0,
-            spare: Vec::new(),
         }
     }
 
@@ -132,7 +129,9 @@ impl<R: Real> Lane<R> {
     /// four-layer rod, `t2/t1 = 70`), and a leap costs one train per front.
     /// The merged fronts move only within a cell, and never earlier than
     /// the cell's first birth, so no arrival moves into the past.
-    pub fn set_fronts(&mut self, fronts: &[Front<R>]) {
+    /// `spare` is a buffer the caller keeps from one leap to the next (not
+    /// one a lane: a larger lane slowed every event of small runs by 15 %).
+    pub fn set_fronts(&mut self, fronts: &[Front<R>], spare: &mut Vec<Front<R>>) {
         self.fronts.clear();
         self.kept = 0;
         let MergeRule::Lattice {
@@ -149,14 +148,14 @@ impl<R: Real> Lane<R> {
             self.refresh_head();
             return;
         };
-        let mut cell = std::mem::take(&mut self.spare);
+        let cell = spare;
         cell.clear();
         let mut cell_index = R::neg_infinity();
         for &f in fronts {
             let keep = f.jump.abs() >= keep_above && self.kept < keep_at_most;
             let index = (f.born / spacing).floor();
             if keep || index != cell_index {
-                self.flush_cell(&mut cell);
+                self.flush_cell(cell);
                 cell_index = index;
             }
             if keep {
@@ -167,8 +166,7 @@ impl<R: Real> Lane<R> {
                 cell.push(f);
             }
         }
-        self.flush_cell(&mut cell);
-        self.spare = cell;
+        self.flush_cell(cell);
         self.refresh_head();
     }
 
@@ -426,7 +424,7 @@ impl<R: Real> Lane<R> {
     /// holds two unkept fronts born together, so the older ones would come
     /// through a merge unchanged; asserted in debug builds). Rebuilding the
     /// whole lane each time cost a copy of a thousand fronts per leap.
-    pub fn place_all(&mut self, deposits: &mut [(R, R)]) {
+    pub fn place_all(&mut self, deposits: &mut [(R, R)], spare: &mut Vec<Front<R>>) {
         if deposits.is_empty() {
             return;
         }
@@ -440,7 +438,7 @@ impl<R: Real> Lane<R> {
                 .all(|(a, b)| a.born != b.born || a.kept || b.kept),
             "a lattice lane holds two unkept fronts born together"
         );
-        let mut newer = std::mem::take(&mut self.spare);
+        let newer = spare;
         newer.clear();
         newer.extend(self.fronts.drain(older..));
         let merged = &mut self.fronts;
@@ -454,7 +452,7 @@ impl<R: Real> Lane<R> {
                 kept: false,
             }),
         };
-        for &f in &newer {
+        for &f in newer.iter() {
             while let Some(&(at, d)) = news.peek() {
                 if at > f.born {
                     break;
@@ -473,7 +471,6 @@ impl<R: Real> Lane<R> {
         for (at, d) in news {
             deposit(merged, at, d);
         }
-        self.spare = newer;
         self.refresh_head();
     }
 
@@ -703,7 +700,7 @@ mod tests {
                 kept: false,
             })
             .collect();
-        lane.set_fronts(&fronts);
+        lane.set_fronts(&fronts, &mut Vec::new());
         let got: Vec<(f64, f64)> = lane.fronts.iter().map(|f| (f.born, f.jump)).collect();
         let sum = |v: &[(f64, f64)]| v.iter().map(|f| f.1).sum::<f64>();
         let moment = |v: &[(f64, f64)]| v.iter().map(|f| f.0 * f.1).sum::<f64>();

@@ -540,10 +540,12 @@ impl<R: Real> Tracer<R> {
         down.sort_by(by_birth);
         let ui = Lane::<R>::index(i, Direction::Up);
         let di = Lane::<R>::index(i, Direction::Down);
+        let mut spare = std::mem::take(&mut self.spare_fronts);
         for (index, fronts) in [(ui, &*up), (di, &*down)] {
-            self.lanes[index].set_fronts(fronts);
-            self.reschedule_layer(i)?;
+            self.lanes[index].set_fronts(fronts, &mut spare);
         }
+        self.spare_fronts = spare;
+        self.reschedule_layer(i)?;
         if self.lanes[ui].folded {
             // a folded top has no down lane: its fronts all went up
             debug_assert!(self.lanes[di].fronts().is_empty());

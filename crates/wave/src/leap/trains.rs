@@ -197,7 +197,7 @@ impl<R: Real> Tracer<R> {
         for lane in lanes {
             batch.clear();
             batch.extend(all.iter().filter(|d| d.0 == lane).map(|d| (d.1, d.2)));
-            self.lanes[lane].place_all(&mut batch);
+            self.lanes[lane].place_all(&mut batch, &mut self.spare_fronts);
             self.reschedule_layer(self.lanes[lane].layer)?;
         }
         self.deposits = all;
