@@ -98,3 +98,66 @@ pub fn run_journaled<P: Sync, T: Serialize + DeserializeOwned + Send>(
     }
     Ok(finished)
 }
+
+/// A spinner on stderr (a terminal only) while a merged ladder runs: the
+/// exact engine's hard scenes take seconds, and the levels say how far the
+/// error bound has come. Nothing for runs that stay exact (milliseconds).
+pub struct LadderSpinner {
+    bar: std::sync::OnceLock<ProgressBar>,
+}
+
+impl LadderSpinner {
+    pub fn new() -> Self {
+        Self {
+            bar: std::sync::OnceLock::new(),
+        }
+    }
+
+    /// Shows what the ladder reports.
+    pub fn show(&self, progress: impact_wave::LadderProgress) {
+        use impact_wave::LadderProgress::{LadderStarted, LevelDone};
+        if !std::io::stderr().is_terminal() {
+            return;
+        }
+        match progress {
+            LadderStarted { exact_events } => {
+                let bar = ProgressBar::new_spinner();
+                bar.set_style(
+                    ProgressStyle::with_template("{elapsed_precise} {spinner} {msg}")
+                        .unwrap_or_else(|_| ProgressStyle::default_spinner()),
+                );
+                bar.enable_steady_tick(std::time::Duration::from_millis(120));
+                bar.set_message(format!(
+                    "the exact run needs more than {exact_events} events: merged lattices, halved until the error bound meets --target"
+                ));
+                let _ = self.bar.set(bar);
+            }
+            LevelDone {
+                level,
+                per_transit,
+                restitution,
+                bound,
+                work,
+            } => {
+                if let Some(bar) = self.bar.get() {
+                    let bound = if level >= 2 {
+                        format!("bound {bound:.1e}")
+                    } else {
+                        "no bound before two levels".to_string()
+                    };
+                    bar.set_message(format!(
+                        "merged level {level} done (lattice {per_transit:.3} of each transit): e = {restitution:.8}, {bound}, {work} units of work"
+                    ));
+                }
+            }
+        }
+    }
+}
+
+impl Drop for LadderSpinner {
+    fn drop(&mut self) {
+        if let Some(bar) = self.bar.get() {
+            bar.finish_and_clear();
+        }
+    }
+}

@@ -127,8 +127,12 @@ pub fn compute(a: &RunArgs, given: Option<Scene>) -> anyhow::Result<Computed> {
     let limit = (rod.is_viscous() && a.masses.is_none()).then_some(ladder);
     let (outcome, wall): (_, Vec<WallSample>) = match engine {
         Engine::Wave(config) => {
-            let solution =
-                Timed::try_measure(|| impact_wave::solve(&rod, &config)).map_err(wave_failure)?;
+            let spinner = crate::jobs::LadderSpinner::new();
+            let solution = Timed::try_measure(|| {
+                impact_wave::solve_observed(&rod, &config, &|p| spinner.show(p))
+            })
+            .map_err(wave_failure)?;
+            drop(spinner);
             let o = Timed {
                 value: solution.value.outcome,
                 seconds: solution.seconds,

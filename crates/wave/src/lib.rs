@@ -37,5 +37,5 @@ pub use fields::{FieldSample, FieldTotals};
 pub use lane::Direction;
 pub use real::{DoubleDouble, Real};
 pub use record::{FrontRecord, Recording, WallSample};
-pub use solve::{Solution, simulate, solve};
+pub use solve::{LadderProgress, Solution, simulate, solve, solve_observed};
 pub use wall::ContactState;

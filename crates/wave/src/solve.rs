@@ -63,8 +63,45 @@ pub fn simulate(rod: &Rod, config: &WaveConfig) -> Result<Outcome, WaveError> {
     Ok(solve(rod, config)?.outcome)
 }
 
+/// What a long solve has done so far, for a caller that shows it (the
+/// command line's spinner on a terminal). Only merged ladders report: an
+/// exact run takes milliseconds, a ladder of a many-layer rod seconds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum LadderProgress {
+    /// The exact run needed more than `exact_events` events: merged
+    /// lattices follow, halved from the coarsest.
+    LadderStarted {
+        /// The exact run's limit that was reached.
+        exact_events: u64,
+    },
+    /// A level of the ladder finished.
+    LevelDone {
+        /// 1 for the coarsest.
+        level: usize,
+        /// Its lattice spacing, as a fraction of each lane's transit.
+        per_transit: f64,
+        /// Its `e`.
+        restitution: f64,
+        /// The bound its comparisons give (two levels at least; the
+        /// reported bound is set when the ladder stops).
+        bound: f64,
+        /// Work done so far (loop iterations, and leaps' fronts and cells).
+        work: u64,
+    },
+}
+
 /// [`simulate`], keeping the engine of the reported run.
 pub fn solve(rod: &Rod, config: &WaveConfig) -> Result<Solution, WaveError> {
+    solve_observed(rod, config, &|_| {})
+}
+
+/// [`solve`], telling `observe` how a merged ladder gets on (see
+/// [`LadderProgress`]); the result is the same.
+pub fn solve_observed(
+    rod: &Rod,
+    config: &WaveConfig,
+    observe: &dyn Fn(LadderProgress),
+) -> Result<Solution, WaveError> {
     config.check()?;
     let mut parts = Vec::new();
     let (fine, merged) = match config.resolution {
@@ -92,7 +129,8 @@ pub fn solve(rod: &Rod, config: &WaveConfig) -> Result<Solution, WaveError> {
                     parts.push(format!(
                         "the exact run needs more than {exact_events} events"
                     ));
-                    let l = ladder(rod, config, budget_events, target)?;
+                    observe(LadderProgress::LadderStarted { exact_events });
+                    let l = ladder(rod, config, budget_events, target, observe)?;
                     (l.0, Some(l.1))
                 }
                 Err(e) => return Err(e),
@@ -377,6 +415,7 @@ fn ladder(
     config: &WaveConfig,
     budget: u64,
     target: f64,
+    observe: &dyn Fn(LadderProgress),
 ) -> Result<(WaveEngine, MergeCheck), WaveError> {
     let twin_rod = nudged(rod);
     let (mut p, mut l) = LADDER_START;
@@ -408,15 +447,13 @@ fn ladder(
         levels.push(fine.restitution());
         let perturbed = (fine.restitution() - twin.restitution()).abs();
         let check = merge_check(&levels, perturbed, p, l, used);
-        if std::env::var_os("IMPACT_LADDER").is_some() {
-            eprintln!(
-                "level {}: p {p:.2e} e {:.12} bound {:.2e} perturbed {perturbed:.1e} steps {} used {used}",
-                levels.len(),
-                fine.restitution(),
-                check.bound,
-                fine.steps()
-            );
-        }
+        observe(LadderProgress::LevelDone {
+            level: levels.len(),
+            per_transit: p,
+            restitution: fine.restitution(),
+            bound: check.bound,
+            work: used,
+        });
         // events about double with each halving
         let next_cost = 2 * (fine.steps() + twin.steps());
         let enough = levels.len() >= MIN_LEVELS;

@@ -452,3 +452,56 @@ fn scene(layers: &[(f64, f64, f64)]) -> impact_model::Rod {
     .validate()
     .unwrap()
 }
+
+/// A merged ladder says how it gets on (the command line's spinner shows
+/// it): it starts when the exact run reaches its limit, then reports each
+/// level, coarsest first, halving the lattice; the last level reported is
+/// the one whose `e` is the outcome's, and watching changes nothing.
+#[test]
+fn a_ladder_reports_each_level_and_the_last_is_the_outcome() {
+    use impact_wave::{LadderProgress, solve_observed};
+    use std::cell::RefCell;
+    // four layers, soft and stiff in turn (the survey's rod 0, as above)
+    let rod = scene(&[
+        (1.1478653606090632, 2.3392900649884223, 0.6160940191909267),
+        (1.0212742919913083, 1519554.0581448823, 0.15426240003102518),
+        (1.1097040631431023, 2.8891039359941266, 0.26877963613648365),
+        (0.6181721513707594, 1241346.5619637165, 0.30291864134562474),
+    ]);
+    let seen = RefCell::new(Vec::new());
+    let watched = solve_observed(&rod, &WaveConfig::default(), &|p| seen.borrow_mut().push(p))
+        .unwrap()
+        .outcome;
+    let plain = simulate(&rod, &WaveConfig::default()).unwrap();
+    assert_eq!(watched.restitution, plain.restitution);
+    assert_eq!(watched.error_bound, plain.error_bound);
+    let seen = seen.into_inner();
+    assert_eq!(
+        seen.first(),
+        Some(&LadderProgress::LadderStarted {
+            exact_events: 200_000
+        })
+    );
+    let levels: Vec<(usize, f64, f64, f64, u64)> = seen[1..]
+        .iter()
+        .map(|p| match *p {
+            LadderProgress::LevelDone {
+                level,
+                per_transit,
+                restitution,
+                bound,
+                work,
+            } => (level, per_transit, restitution, bound, work),
+            other => panic!("{other:?} after the start"),
+        })
+        .collect();
+    assert!(levels.len() >= 3, "{levels:?}");
+    for (k, w) in levels.iter().enumerate() {
+        assert_eq!(w.0, k + 1);
+        assert_eq!(w.1, 0.2 / 2f64.powi(k as i32));
+    }
+    assert!(levels.windows(2).all(|w| w[1].4 > w[0].4), "work grows");
+    let last = levels[levels.len() - 1];
+    assert_eq!(last.2, plain.restitution);
+    assert!(last.3 <= plain.error_bound.unwrap());
+}
