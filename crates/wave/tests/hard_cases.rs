@@ -294,6 +294,18 @@ fn adjacent_fast_layers_finish_and_coarse_lattices_are_refused() {
     assert!(matches!(err, WaveError::Setting { .. }), "{err}");
 }
 
+/// Four layers, soft and stiff in turn (`scripts/survey-layers.py`, seed
+/// 7, rod 0; transit ratio 1.9e3): the exact run needs more than `2e5`
+/// events, and the merged ladder takes three levels or more.
+fn survey_rod_0() -> impact_model::Rod {
+    scene(&[
+        (1.1478653606090632, 2.3392900649884223, 0.6160940191909267),
+        (1.0212742919913083, 1519554.0581448823, 0.15426240003102518),
+        (1.1097040631431023, 2.8891039359941266, 0.26877963613648365),
+        (0.6181721513707594, 1241346.5619637165, 0.30291864134562474),
+    ])
+}
+
 /// A merged ladder whose third level would exceed `max_events` reports the
 /// finest level that finished, with the bound of its one comparison, and
 /// says so (before, the scene failed: an eight-layer rod of the layer
@@ -301,14 +313,7 @@ fn adjacent_fast_layers_finish_and_coarse_lattices_are_refused() {
 /// its own bound of the truth, must lie within the short ladder's bound.
 #[test]
 fn a_ladder_cut_short_by_max_events_reports_what_finished() {
-    // four layers, soft and stiff in turn (`scripts/survey-layers.py`,
-    // seed 7, rod 0; transit ratio 1.9e3)
-    let rod = scene(&[
-        (1.1478653606090632, 2.3392900649884223, 0.6160940191909267),
-        (1.0212742919913083, 1519554.0581448823, 0.15426240003102518),
-        (1.1097040631431023, 2.8891039359941266, 0.26877963613648365),
-        (0.6181721513707594, 1241346.5619637165, 0.30291864134562474),
-    ]);
+    let rod = survey_rod_0();
     let full = simulate(&rod, &WaveConfig::default()).unwrap();
     let short = simulate(
         &rod,
@@ -461,13 +466,7 @@ fn scene(layers: &[(f64, f64, f64)]) -> impact_model::Rod {
 fn a_ladder_reports_each_level_and_the_last_is_the_outcome() {
     use impact_wave::{LadderProgress, solve_observed};
     use std::cell::RefCell;
-    // four layers, soft and stiff in turn (the survey's rod 0, as above)
-    let rod = scene(&[
-        (1.1478653606090632, 2.3392900649884223, 0.6160940191909267),
-        (1.0212742919913083, 1519554.0581448823, 0.15426240003102518),
-        (1.1097040631431023, 2.8891039359941266, 0.26877963613648365),
-        (0.6181721513707594, 1241346.5619637165, 0.30291864134562474),
-    ]);
+    let rod = survey_rod_0();
     let seen = RefCell::new(Vec::new());
     let watched = solve_observed(&rod, &WaveConfig::default(), &|p| seen.borrow_mut().push(p))
         .unwrap()
