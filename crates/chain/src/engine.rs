@@ -193,7 +193,7 @@ impl ChainEngine {
         match &self.kernel {
             Kernel::Elastic(k) => Cow::Borrowed(k.displacement()),
             Kernel::Split(k) => k.displacement(),
-            Kernel::Implicit(k) => Cow::Borrowed(k.displacement()),
+            Kernel::Implicit(k) => k.displacement(),
         }
     }
 
@@ -202,7 +202,7 @@ impl ChainEngine {
         match &self.kernel {
             Kernel::Elastic(k) => k.displacement()[0],
             Kernel::Split(k) => k.u0(),
-            Kernel::Implicit(k) => k.displacement()[0],
+            Kernel::Implicit(k) => k.u0(),
         }
     }
 
@@ -210,7 +210,7 @@ impl ChainEngine {
         match &self.kernel {
             Kernel::Elastic(k) => Cow::Owned(k.velocities()),
             Kernel::Split(k) => Cow::Owned(k.velocities()),
-            Kernel::Implicit(k) => Cow::Borrowed(k.velocities()),
+            Kernel::Implicit(k) => k.velocities(),
         }
     }
 
@@ -219,7 +219,7 @@ impl ChainEngine {
         match &self.kernel {
             Kernel::Elastic(k) => k.velocity(j),
             Kernel::Split(k) => k.velocity(j),
-            Kernel::Implicit(k) => k.velocities()[j],
+            Kernel::Implicit(k) => k.velocity(j),
         }
     }
 
@@ -305,7 +305,7 @@ impl ChainEngine {
             }
             Kernel::Implicit(kernel) => {
                 let impulse = kernel.step();
-                (spring_force(kernel.displacement()[0]), impulse)
+                (spring_force(kernel.u0()), impulse)
             }
         };
         self.impulse += step_impulse;

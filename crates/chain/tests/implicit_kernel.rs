@@ -1,4 +1,4 @@
-//! The implicit kernel (`crates/chain/src/implicit.rs`) against the method
+//! The implicit kernel (`crates/chain/src/implicit/mod.rs`) against the method
 //! written out here the long way: the two SDIRK2 stages with their stage
 //! positions and all four force evaluations (`K u`, `K U1`, `D V1` and
 //! `K (u + (1 - g) h V1)`, where the kernel folds three into one stencil),
@@ -178,6 +178,44 @@ fn implicit(masses: usize, stop: ChainStop) -> ChainConfig {
     }
 }
 
+/// The engine's and the written-out chain's positions and velocities after
+/// `steps` steps of `masses` masses: their largest gaps, relative.
+fn state_gaps(rod: &Rod, law: WallContact, masses: usize, steps: usize) -> (f64, f64) {
+    let mut engine = ChainEngine::new(rod, implicit(masses, ChainStop::Escape)).unwrap();
+    let mut plain = Plain::new(rod, masses, law);
+    let dt = engine.time_step();
+    for _ in 0..steps {
+        engine.step().unwrap();
+        plain.step(dt);
+    }
+    let (u, v) = engine.state();
+    (gap(&u, &plain.u), gap(&v, &plain.v))
+}
+
+/// A whole run of `masses` masses to `stop`: the engine's `e` and the
+/// written-out chain's over as many steps, and their numbers of contacts.
+fn whole_run(rod: &Rod, law: WallContact, masses: usize, stop: ChainStop) -> [(f64, usize); 2] {
+    let o = ChainEngine::new(rod, implicit(masses, stop))
+        .unwrap()
+        .run()
+        .unwrap();
+    let mut plain = Plain::new(rod, masses, law);
+    let dt = ChainLayout::new(rod, masses).unwrap().paper_time_step();
+    let mut contacts = 1;
+    let mut was = true;
+    for _ in 0..o.steps.unwrap() {
+        plain.step(dt);
+        if plain.wall_on && !was {
+            contacts += 1;
+        }
+        was = plain.wall_on;
+    }
+    let total: f64 = plain.m.iter().sum();
+    let vb = rod.impact_speed();
+    let e = (-vb + plain.impulse / total) / vb;
+    [(o.restitution, o.contacts.len()), (e, contacts)]
+}
+
 /// 300 masses: the kernel's solves run in the blocked sweeps (the plain
 /// ones in one piece). Both laws, through the contact's start, the
 /// unilateral wall's release and the rods' leaving.
@@ -185,16 +223,7 @@ fn implicit(masses: usize, stop: ChainStop) -> ChainConfig {
 fn positions_and_velocities_are_the_written_out_methods() {
     for law in WallContact::ALL {
         for (label, rod) in cases(law) {
-            let (masses, steps) = (300, 4_000);
-            let mut engine = ChainEngine::new(&rod, implicit(masses, ChainStop::Escape)).unwrap();
-            let mut plain = Plain::new(&rod, masses, law);
-            let dt = engine.time_step();
-            for _ in 0..steps {
-                engine.step().unwrap();
-                plain.step(dt);
-            }
-            let (u, v) = engine.state();
-            let (du, dv) = (gap(&u, &plain.u), gap(&v, &plain.v));
+            let (du, dv) = state_gaps(&rod, law, 300, 4_000);
             println!("{label}, {law}: positions {du:.1e}, velocities {dv:.1e}");
             assert!(du <= 1e-12, "{label}, {law}: positions {du:.1e} apart");
             assert!(dv <= 1e-11, "{label}, {law}: velocities {dv:.1e} apart");
@@ -208,33 +237,45 @@ fn positions_and_velocities_are_the_written_out_methods() {
 fn e_and_contacts_are_the_written_out_methods() {
     for law in WallContact::ALL {
         for (label, rod) in cases(law) {
-            let masses = 120;
-            let o = ChainEngine::new(&rod, implicit(masses, ChainStop::PAPER))
-                .unwrap()
-                .run()
-                .unwrap();
-            let mut plain = Plain::new(&rod, masses, law);
-            let dt = ChainLayout::new(&rod, masses).unwrap().paper_time_step();
-            let mut contacts = 0;
-            let mut was = true;
-            for _ in 0..o.steps.unwrap() {
-                plain.step(dt);
-                if plain.wall_on && !was {
-                    contacts += 1;
-                }
-                was = plain.wall_on;
-            }
-            let total: f64 = plain.m.iter().sum();
-            let vb = rod.impact_speed();
-            let e = (-vb + plain.impulse / total) / vb;
-            println!("{label}, {law}: e = {} vs {e}", o.restitution);
+            let [(e, contacts), (plain_e, plain_contacts)] =
+                whole_run(&rod, law, 120, ChainStop::PAPER);
+            println!("{label}, {law}: e = {e} vs {plain_e}");
             assert!(
-                (o.restitution - e).abs() <= 1e-12,
-                "{label}, {law}: e {} vs {e}",
-                o.restitution
+                (e - plain_e).abs() <= 1e-12,
+                "{label}, {law}: e {e} vs {plain_e}"
             );
-            assert_eq!(o.contacts.len(), 1 + contacts, "{label}, {law}");
+            assert_eq!(contacts, plain_contacts, "{label}, {law}");
         }
+    }
+}
+
+/// Chains long enough for the two-pass kernel (`src/implicit/fused.rs`:
+/// blocks of 600 masses swept side by side, the first stage solved up then
+/// down and the second down then up), 3000 steps into the contact.
+#[test]
+fn long_chains_step_as_the_written_out_method() {
+    for law in WallContact::ALL {
+        for (label, rod) in cases(law).into_iter().skip(1) {
+            let (du, dv) = state_gaps(&rod, law, 4800, 3_000);
+            println!("{label}, {law}, 4800 masses: positions {du:.1e}, velocities {dv:.1e}");
+            assert!(du <= 1e-12, "{label}, {law}: positions {du:.1e} apart");
+            assert!(dv <= 1e-11, "{label}, {law}: velocities {dv:.1e} apart");
+        }
+    }
+}
+
+/// A whole contact and the rod's leaving at 1200 masses, where the
+/// two-pass kernel takes the steps and the stage-by-stage kernel the wall's
+/// switches: the same `e` and contacts as the written-out method.
+#[test]
+fn whole_runs_of_long_chains_give_the_written_out_e() {
+    for law in WallContact::ALL {
+        let rod = homogeneous_under(0.01, law);
+        let [(e, contacts), (plain_e, plain_contacts)] =
+            whole_run(&rod, law, 1200, ChainStop::Escape);
+        println!("tau c / L = 0.01, {law}: e = {e} vs {plain_e}");
+        assert!((e - plain_e).abs() <= 1e-12, "{law}: e {e} vs {plain_e}");
+        assert_eq!(contacts, plain_contacts, "{law}");
     }
 }
 

@@ -96,7 +96,7 @@ type RodOf = fn(WallContact) -> Rod;
 /// laws differ where the bottom is viscous, by the amounts the issue
 /// measured (`tau c / L = 1`: `e = 0.009` under the paper's law, `0.151`
 /// unilateral), and coincide where it is not. The engine runs its default,
-/// implicit kernel (`src/implicit.rs`); the split kernel was `1e-4` away
+/// implicit kernel (`src/implicit/mod.rs`); the split kernel was `1e-4` away
 /// at the over-damped wall (`tau c / L = 1`, paper's law).
 #[test]
 fn both_laws_agree_with_an_explicit_chain() {

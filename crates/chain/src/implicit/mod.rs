@@ -46,19 +46,32 @@
 //! the unilateral law a step whose wall impulse would pull is redone with
 //! the wall giving none, as the split kernel does.
 //!
-//! Cost: two tridiagonal solves (in the blocked sweeps of
-//! `crate::damping::factor` for a long chain, two masses a link of their
-//! recurrences) and three passes per step (each stage's forces and
-//! right-hand side in one, and the positions), 3.7 ns per mass-step at
-//! `N = 10^4` (`cargo bench -p impact-chain --bench chain`; 4.5 with one
-//! mass a link and a pass of its own for each stencil), three to four
-//! times the split kernel's, which stays available by name. About 36
-//! flops per mass-step: 8 and 10 for the stages' right-hand sides, 7 for
-//! each solve, 4 for the positions.
+//! Cost. A step is two tridiagonal solves and three stencils. Taken one
+//! at a time (the stage-by-stage kernel below: each stage's forces and
+//! right-hand side in a pass, the blocked sweeps of
+//! `crate::damping::factor`, the positions), that is seven passes over the
+//! chain's arrays, 3.7 ns per mass-step at `N = 10^4`, bound by moving the
+//! arrays through the cache. A chain long enough to cut into eight blocks
+//! of at least its sweeps' halo takes its steps in two passes instead
+//! (`fused.rs`: the first stage solved up then down, the second down then
+//! up, each sweep riding the pass that goes its way, four arrays, the
+//! blocks side by side in vector registers): 0.95 ns (a viscous top) and
+//! 1.13 ns (a viscous bottom) per mass-step at `N = 10^4` with AVX-512,
+//! 1.34 and 1.53 with AVX2, 2.5 and 2.7 with the baseline's SSE2 (`cargo
+//! bench -p impact-chain --bench chain`; the same bits from each, tested).
+//! The steps where the wall switches, or would pull, are the stage-by-stage
+//! kernel's. About 34 flops per mass-step either way.
 
 use crate::damping::{Factor, GAMMA, Quad, lane_length};
 use crate::layout::ChainLayout;
+use fused::{Bottom, Fused, Isa};
 use impact_model::WallContact;
+use plan::{Elements, Plan};
+use std::borrow::Cow;
+
+mod fused;
+mod lanes;
+mod plan;
 
 /// The chain's state and the factors of `A` for the wall element off and
 /// on.
@@ -88,18 +101,64 @@ pub(crate) struct ImplicitChain {
     r: Vec<f64>,
     v1: Vec<f64>,
     lanes: Vec<Quad>,
+    /// The two-pass kernel of a long chain (`fused.rs`), which then holds
+    /// the state: `u` and `v` above are only the stage-by-stage steps' copies.
+    fused: Option<Box<FusedKernel>>,
+}
+
+/// The two-pass kernel and its plans for the wall element off and on.
+#[derive(Debug, Clone)]
+struct FusedKernel {
+    state: Fused,
+    free: Plan,
+    with_wall: Plan,
 }
 
 impl ImplicitChain {
     /// The chain at rest length, every mass moving down at `impact_speed`
     /// and mass 0 touching the wall, under the wall law `law`.
     pub(crate) fn new(layout: &ChainLayout, dt: f64, impact_speed: f64, law: WallContact) -> Self {
+        Self::with_isa(
+            layout,
+            dt,
+            impact_speed,
+            law,
+            Some(Isa::Detected(pulp::Arch::new())),
+        )
+    }
+
+    /// [`Self::new`], the two-pass kernel compiled for `isa` (`None`: the
+    /// stage-by-stage kernel only, the tests' reference).
+    fn with_isa(
+        layout: &ChainLayout,
+        dt: f64,
+        impact_speed: f64,
+        law: WallContact,
+        isa: Option<Isa>,
+    ) -> Self {
         let n = layout.len();
         let lane = lane_length(n);
         let (m, k, c) = (&layout.mass, &layout.stiffness, &layout.viscosity);
+        let elements = Elements {
+            mass: m,
+            stiffness: k,
+            viscosity: c,
+            h: dt,
+        };
+        let u = vec![0.0; n];
+        let v = vec![-impact_speed; n];
+        let fused = isa.and_then(|isa| {
+            let lanes = lanes::LaneLayout::new(n, elements.ghosts(n.div_ceil(lanes::LANES))?)?;
+            Some(Box::new(FusedKernel {
+                state: Fused::new(lanes, &u, &v, isa),
+                free: elements.plan(&lanes, false),
+                with_wall: elements.plan(&lanes, true),
+            }))
+        });
         Self {
-            u: vec![0.0; n],
-            v: vec![-impact_speed; n],
+            fused,
+            u,
+            v,
             mass: layout.mass.clone(),
             stiffness: k.clone(),
             viscosity: c.clone(),
@@ -124,18 +183,68 @@ impl ImplicitChain {
     }
 
     /// Displacements now.
-    pub(crate) fn displacement(&self) -> &[f64] {
-        &self.u
+    pub(crate) fn displacement(&self) -> Cow<'_, [f64]> {
+        match &self.fused {
+            Some(f) => Cow::Owned((0..self.u.len()).map(|j| f.state.u(j)).collect()),
+            None => Cow::Borrowed(&self.u),
+        }
     }
 
     /// Velocities now.
-    pub(crate) fn velocities(&self) -> &[f64] {
-        &self.v
+    pub(crate) fn velocities(&self) -> Cow<'_, [f64]> {
+        match &self.fused {
+            Some(f) => Cow::Owned((0..self.v.len()).map(|j| f.state.v(j)).collect()),
+            None => Cow::Borrowed(&self.v),
+        }
+    }
+
+    /// Displacement of mass 0 now.
+    pub(crate) fn u0(&self) -> f64 {
+        self.fused.as_ref().map_or(self.u[0], |f| f.state.u(0))
+    }
+
+    /// Velocity of mass `j` now.
+    pub(crate) fn velocity(&self, j: usize) -> f64 {
+        self.fused.as_ref().map_or(self.v[j], |f| f.state.v(j))
     }
 
     /// One step of `dt`; returns the wall's impulse on the rod during it
     /// (upward positive).
     pub(crate) fn step(&mut self) -> f64 {
+        let element = self.wall_element(self.wall_on);
+        let Some(fused) = self.fused.as_mut() else {
+            return self.stage_by_stage_step();
+        };
+        let plan = if self.wall_on {
+            &fused.with_wall
+        } else {
+            &fused.free
+        };
+        let bottom = fused.state.descend(plan, self.dt);
+        let impulse = wall_impulse(element, self.dt, bottom);
+        let pulls = self.unilateral && self.wall_on && impulse < 0.0;
+        if !pulls && (bottom.u_next < 0.0) == self.wall_on {
+            fused.state.ascend(plan, self.dt);
+            return impulse;
+        }
+        // the wall switches, or would pull: the stage-by-stage kernel takes the
+        // step from the state the descending pass left untouched
+        fused.state.state_into(&mut self.u, &mut self.v);
+        let impulse = self.stage_by_stage_step();
+        if let Some(fused) = self.fused.as_mut() {
+            fused.state.set_state(&self.u, &self.v);
+        }
+        impulse
+    }
+
+    /// The wall element's `(k_0, c_0)`, zero while it does not act.
+    fn wall_element(&self, wall: bool) -> (f64, f64) {
+        let w = if wall { 1.0 } else { 0.0 };
+        (w * self.stiffness[0], w * self.viscosity[0])
+    }
+
+    /// [`Self::step`] by the stage-by-stage kernel, on `u` and `v`.
+    fn stage_by_stage_step(&mut self) -> f64 {
         let impulse = self.wall_step(self.dt, None);
         if (self.u_next[0] < 0.0) == self.wall_on {
             self.accept();
@@ -181,8 +290,7 @@ impl ImplicitChain {
     /// wall element on or off, by `factor` (`None`: the kept one, `h =
     /// dt`); returns the wall's impulse.
     fn sdirk(&mut self, h: f64, wall: bool, factor: Option<&Factor>) -> f64 {
-        let w = if wall { 1.0 } else { 0.0 };
-        let (k0, c0) = (w * self.stiffness[0], w * self.viscosity[0]);
+        let (k0, c0) = self.wall_element(wall);
         let kept = if wall { &self.with_wall } else { &self.free };
         let factor = factor.unwrap_or(kept);
         // first stage: A V1 = M v + g h K u
@@ -193,7 +301,7 @@ impl ImplicitChain {
             self.r[j] = m[j] * v[j] + gh * f;
         });
         factor.solve_into(&mut self.r, &mut self.lanes, &mut self.v1);
-        let wall_force_1 = -(k0 * (self.u[0] + gh * self.v1[0]) + c0 * self.v1[0]);
+        let bottom_v1 = self.v1[0];
         // second stage: A V2 = M v + h K u + (1 - g) h (D + 2 g h K) V1
         let owned;
         let e = if h == self.dt {
@@ -218,9 +326,23 @@ impl ImplicitChain {
         {
             *u_next = u + (b1 * v1 + b2 * v2);
         }
-        let wall_force_2 = -(k0 * self.u_next[0] + c0 * self.v_next[0]);
-        h * ((1.0 - GAMMA) * wall_force_1 + GAMMA * wall_force_2)
+        let bottom = Bottom {
+            u: self.u[0],
+            v1: bottom_v1,
+            v2: self.v_next[0],
+            u_next: self.u_next[0],
+        };
+        wall_impulse((k0, c0), h, bottom)
     }
+}
+
+/// The wall's impulse over a step of `h` from mass 0's part of it, its
+/// element `(k_0, c_0)` (zero while it does not act): the stages'
+/// quadrature of its force.
+fn wall_impulse((k0, c0): (f64, f64), h: f64, b: Bottom) -> f64 {
+    let wall_force_1 = -(k0 * (b.u + GAMMA * h * b.v1) + c0 * b.v1);
+    let wall_force_2 = -(k0 * b.u_next + c0 * b.v2);
+    h * ((1.0 - GAMMA) * wall_force_1 + GAMMA * wall_force_2)
 }
 
 /// `A = M - g h D - g^2 h^2 K` of masses `m`, elements `k`, `c` (element
@@ -275,3 +397,6 @@ fn forces(s: &[f64], wall: f64, x: &[f64], mut then: impl FnMut(usize, f64)) {
     }
     then(n - 1, -s[n - 1] * (x[n - 1] - x[n - 2]));
 }
+
+#[cfg(test)]
+mod tests;
