@@ -375,7 +375,10 @@ impl WithSimd for Ascend<'_> {
 }
 
 /// The ascending pass's second half alone, for a state the ascending pass
-/// did not leave: the first stage's right-hand side and upward sweep.
+/// did not leave: the first stage's right-hand side and upward sweep. It
+/// reads `u` and `v` in the ghost rows below each block, which only
+/// [`Fused::set_state`] fills for `v` (the state it primes for is always
+/// one set so).
 struct Prime<'a> {
     plan: &'a Plan,
     u: &'a [Row],
