@@ -1,5 +1,5 @@
 //! Cost of the chain kernels, one core, at N = 10^3, 10^4 (the paper's) and
-//! 10^5: at 10^5 the state no longer fits in a 1 MiB L2, so the three sizes
+//! 10^5: at 10^5 the state no longer fits in the L2 (1 to 2 MiB a core), so the three sizes
 //! show where the cache ends. Throughput is in mass-steps, so
 //! 1 / (criterion's elem/s) is the time per mass-step.
 //!
