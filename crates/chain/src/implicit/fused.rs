@@ -193,7 +193,7 @@ impl Plan {
             .iter()
             .find(|s| (s.start..s.end).contains(&r))
             .map_or(Row::ZERO, |s| match &s.c {
-                Coefficients::Same(c) => c.inv_du,
+                Coefficients::Same(c) | Coefficients::Inside(c) => c.inv_du,
                 Coefficients::ByRow(c) => c[r - s.start].inv_du,
             })
     }
@@ -203,7 +203,9 @@ impl Plan {
 /// inlined: the passes are compiled for the processor's vectors only
 /// where they are inlined into `WithSimd::with_simd`.
 trait RowStep<C> {
-    fn row(&mut self, r: usize, c: &C);
+    /// Row `r`; `INSIDE`: the elements above and below each mass alike
+    /// ([`Coefficients::Inside`]), the `below` constants unused.
+    fn row<const INSIDE: bool>(&mut self, r: usize, c: &C);
 }
 
 /// Runs `op` over the stored rows `range` of `segments`, upwards or
@@ -227,13 +229,20 @@ fn sweep<C: Copy, const DOWN: bool>(
                 let c = *c;
                 for i in 0..end - start {
                     let r = if DOWN { end - 1 - i } else { start + i };
-                    op.row(r, &c);
+                    op.row::<false>(r, &c);
+                }
+            }
+            Coefficients::Inside(c) => {
+                let c = *c;
+                for i in 0..end - start {
+                    let r = if DOWN { end - 1 - i } else { start + i };
+                    op.row::<true>(r, &c);
                 }
             }
             Coefficients::ByRow(cs) => {
                 for i in 0..end - start {
                     let r = if DOWN { end - 1 - i } else { start + i };
-                    op.row(r, &cs[r - seg.start]);
+                    op.row::<false>(r, &cs[r - seg.start]);
                 }
             }
         }
@@ -271,11 +280,21 @@ struct Descending<'a> {
 
 impl RowStep<Descent> for Descending<'_> {
     #[inline(always)]
-    fn row(&mut self, r: usize, c: &Descent) {
+    fn row<const INSIDE: bool>(&mut self, r: usize, c: &Descent) {
         let u_0 = self.u[r];
         let v1 = self.y[r] * c.inv_d - c.l_up * self.v1_1;
-        let ku = c.hk_above * (self.u_2 - self.u_1) - c.hk_below * (self.u_1 - u_0);
-        let dv = c.se_above * (self.v1_2 - self.v1_1) - c.se_below * (self.v1_1 - v1);
+        let (du, dv1) = ((self.u_2 - self.u_1), (self.v1_2 - self.v1_1));
+        let (ku, dv) = if INSIDE {
+            (
+                c.hk_above * (du - (self.u_1 - u_0)),
+                c.se_above * (dv1 - (self.v1_1 - v1)),
+            )
+        } else {
+            (
+                c.hk_above * du - c.hk_below * (self.u_1 - u_0),
+                c.se_above * dv1 - c.se_below * (self.v1_1 - v1),
+            )
+        };
         let r2 = c.mass * self.v[r + 1] + ku + dv;
         let z = r2 - c.u_up * self.z_2;
         self.w[r] = v1;
@@ -338,10 +357,14 @@ struct Ascending<'a> {
 
 impl RowStep<Ascent> for Ascending<'_> {
     #[inline(always)]
-    fn row(&mut self, r: usize, c: &Ascent) {
+    fn row<const INSIDE: bool>(&mut self, r: usize, c: &Ascent) {
         let v2 = self.y[r] * c.inv_du - c.u_down * self.v2_1;
         let un = self.u[r] + (self.b1 * self.w[r] + self.b2 * v2);
-        let ku = c.ghk_above * (un - self.un_1) - c.ghk_below * (self.un_1 - self.un_2);
+        let ku = if INSIDE {
+            c.ghk_above * ((un - self.un_1) - (self.un_1 - self.un_2))
+        } else {
+            c.ghk_above * (un - self.un_1) - c.ghk_below * (self.un_1 - self.un_2)
+        };
         let yn = (c.mass * self.v2_1 + ku) - c.l * self.y_2;
         self.v[r] = v2;
         self.u[r] = un;
@@ -401,9 +424,13 @@ struct Priming<'a> {
 
 impl RowStep<Ascent> for Priming<'_> {
     #[inline(always)]
-    fn row(&mut self, r: usize, c: &Ascent) {
+    fn row<const INSIDE: bool>(&mut self, r: usize, c: &Ascent) {
         let u_r = self.u[r];
-        let ku = c.ghk_above * (u_r - self.u_1) - c.ghk_below * (self.u_1 - self.u_2);
+        let ku = if INSIDE {
+            c.ghk_above * ((u_r - self.u_1) - (self.u_1 - self.u_2))
+        } else {
+            c.ghk_above * (u_r - self.u_1) - c.ghk_below * (self.u_1 - self.u_2)
+        };
         let yn = (c.mass * self.v_1 + ku) - c.l * self.y_2;
         if r >= 1 {
             self.y[r - 1] = yn;

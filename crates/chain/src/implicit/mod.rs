@@ -57,10 +57,11 @@
 //! up, each sweep riding the pass that goes its way, four arrays, the
 //! blocks side by side in vector registers): 0.95 ns (a viscous top) and
 //! 1.13 ns (a viscous bottom) per mass-step at `N = 10^4` with AVX-512,
-//! 1.34 and 1.53 with AVX2, 2.5 and 2.7 with the baseline's SSE2 (`cargo
+//! 1.28 and 1.49 with AVX2, 2.3 and 2.5 with the baseline's SSE2 (`cargo
 //! bench -p impact-chain --bench chain`; the same bits from each, tested).
 //! The steps where the wall switches, or would pull, are the stage-by-stage
-//! kernel's. About 34 flops per mass-step either way.
+//! kernel's. About 34 flops per mass-step stage by stage, 31 in two passes
+//! (inside a layer a stencil takes one multiply).
 
 use crate::damping::{Factor, GAMMA, Quad, lane_length};
 use crate::layout::ChainLayout;

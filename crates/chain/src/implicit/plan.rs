@@ -68,11 +68,16 @@ pub(crate) struct Segment<C> {
     pub(crate) c: Coefficients<C>,
 }
 
-/// A segment's coefficients: one set for all its rows (inside a layer), or
-/// one a row (where the factors' pivots are still settling).
+/// A segment's coefficients: one set for all its rows, or one a row (where
+/// the factors' pivots are still settling).
 #[derive(Debug, Clone)]
 pub(crate) enum Coefficients<C> {
     Same(C),
+    /// One set whose elements above and below each mass are alike (inside
+    /// a layer, in every block): a stencil then takes one multiply,
+    /// `k ((u_{j+1} - u_j) - (u_j - u_{j-1}))`, and a pass keeps fewer
+    /// constants in registers.
+    Inside(C),
     ByRow(Vec<C>),
 }
 
@@ -238,20 +243,25 @@ impl Elements<'_> {
             }
         };
         Plan {
-            descent: segments(layout, descent, Descent::side_by_side),
-            ascent: segments(layout, ascent, Ascent::side_by_side),
+            descent: segments(layout, descent, Descent::side_by_side, |c| {
+                c.hk_above == c.hk_below && c.se_above == c.se_below
+            }),
+            ascent: segments(layout, ascent, Ascent::side_by_side, |c| {
+                c.ghk_above == c.ghk_below
+            }),
         }
     }
 }
 
 /// Rows of `layout` with their coefficients (`one` for a mass, set side by
 /// side by `widen`): runs of at least [`LEAST_SAME`] equal rows in
-/// segments of their own, the rows between them in segments of rows
-/// apart.
+/// segments of their own (marked [`Coefficients::Inside`] where `inside`
+/// says so), the rows between them in segments of rows apart.
 fn segments<C: PartialEq, W: Copy + PartialEq>(
     layout: &LaneLayout,
     one: impl Fn(isize) -> C,
     widen: fn([C; LANES]) -> W,
+    inside: fn(&W) -> bool,
 ) -> Vec<Segment<W>> {
     // runs of equal rows: (start, end, coefficients)
     let mut runs: Vec<(usize, usize, W)> = Vec::new();
@@ -268,7 +278,11 @@ fn segments<C: PartialEq, W: Copy + PartialEq>(
             out.push(Segment {
                 start,
                 end,
-                c: Coefficients::Same(c),
+                c: if inside(&c) {
+                    Coefficients::Inside(c)
+                } else {
+                    Coefficients::Same(c)
+                },
             });
             continue;
         }
