@@ -30,7 +30,30 @@ fn cases(law: WallContact) -> Vec<(&'static str, Rod)> {
             "both viscous (x 0.4, alpha 0.05, tau 0.02, 0.5)",
             viscous_bilayer(0.4, 0.05, [0.02, 0.5], law),
         ),
+        ("five layers, moduli over five decades", five_layers(law)),
     ]
+}
+
+/// Steel-, gel-, aluminium-, foam- and rubber-like layers (moduli from
+/// `2e-3` to `200`, densities from 0.9 to 7.8), the two soft ones viscous.
+fn five_layers(law: WallContact) -> Rod {
+    use impact_model::{Layer, Scene};
+    let mut layers = vec![
+        Layer::elastic(0.3, 200.0, 7.8),
+        Layer::elastic(0.5, 0.01, 1.1),
+        Layer::elastic(0.2, 70.0, 2.7),
+        Layer::elastic(0.6, 0.002, 0.9),
+        Layer::elastic(0.4, 3.0, 1.2),
+    ];
+    layers[1].relaxation_time = Some(0.05);
+    layers[3].relaxation_time = Some(0.5);
+    Scene {
+        impact_speed: 1.0,
+        layers,
+        wall_contact: Some(law),
+    }
+    .validate()
+    .unwrap()
 }
 
 /// A homogeneous rod of `tau c / L = tau` (short blocks suffice: its
