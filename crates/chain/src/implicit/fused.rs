@@ -141,9 +141,8 @@ impl Fused {
         layout.fill_near(&mut self.w, g, 1);
         self.primed = false;
         // V2_0: the upward sweep's first value (U[-1][0] = 0)
-        let inv_du = plan.ascent_at(g).0[0];
         let (u, v1) = (self.u[g].0[0], self.w[g].0[0]);
-        let v2 = self.y[g].0[0] * inv_du;
+        let v2 = self.y[g].0[0] * plan.bottom_inv_du;
         let (b1, b2) = ((1.0 - GAMMA) * h, GAMMA * h);
         Bottom {
             u,
@@ -175,6 +174,20 @@ impl Fused {
         self.primed = true;
     }
 
+    /// Displacements in the chain's order.
+    pub(crate) fn displacements(&self) -> Vec<f64> {
+        let mut u = vec![0.0; self.layout.n];
+        self.layout.gather(&self.u, &mut u);
+        u
+    }
+
+    /// Velocities in the chain's order.
+    pub(crate) fn velocities(&self) -> Vec<f64> {
+        let mut v = vec![0.0; self.layout.n];
+        self.layout.gather(&self.v, &mut v);
+        v
+    }
+
     /// Displacement of mass `j`.
     pub(crate) fn u(&self, j: usize) -> f64 {
         self.layout.get(&self.u, j)
@@ -183,19 +196,6 @@ impl Fused {
     /// Velocity of mass `j`.
     pub(crate) fn v(&self, j: usize) -> f64 {
         self.layout.get(&self.v, j)
-    }
-}
-
-impl Plan {
-    /// `1 / d'` at stored row `r`.
-    fn ascent_at(&self, r: usize) -> Row {
-        self.ascent
-            .iter()
-            .find(|s| (s.start..s.end).contains(&r))
-            .map_or(Row::ZERO, |s| match &s.c {
-                Coefficients::Same(c) | Coefficients::Inside(c) => c.inv_du,
-                Coefficients::ByRow(c) => c[r - s.start].inv_du,
-            })
     }
 }
 

@@ -186,7 +186,7 @@ impl ImplicitChain {
     /// Displacements now.
     pub(crate) fn displacement(&self) -> Cow<'_, [f64]> {
         match &self.fused {
-            Some(f) => Cow::Owned((0..self.u.len()).map(|j| f.state.u(j)).collect()),
+            Some(f) => Cow::Owned(f.state.displacements()),
             None => Cow::Borrowed(&self.u),
         }
     }
@@ -194,7 +194,7 @@ impl ImplicitChain {
     /// Velocities now.
     pub(crate) fn velocities(&self) -> Cow<'_, [f64]> {
         match &self.fused {
-            Some(f) => Cow::Owned((0..self.v.len()).map(|j| f.state.v(j)).collect()),
+            Some(f) => Cow::Owned(f.state.velocities()),
             None => Cow::Borrowed(&self.v),
         }
     }

@@ -90,6 +90,9 @@ const LEAST_SAME: usize = 8;
 pub(crate) struct Plan {
     pub(crate) descent: Vec<Segment<Descent>>,
     pub(crate) ascent: Vec<Segment<Ascent>>,
+    /// Mass 0's `1 / d'`: its `V2` is the upward sweep's first value,
+    /// `z_0 / d'_0`, which the step needs between the passes.
+    pub(crate) bottom_inv_du: f64,
 }
 
 /// The chain's elements and the step: everything a plan is built from.
@@ -249,6 +252,7 @@ impl Elements<'_> {
             ascent: segments(layout, ascent, Ascent::side_by_side, |c| {
                 c.ghk_above == c.ghk_below
             }),
+            bottom_inv_du: f.inv_du[0],
         }
     }
 }
