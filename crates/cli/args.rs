@@ -246,7 +246,7 @@ pub struct SweepArgs {
     pub alpha: String,
     #[command(flatten)]
     pub viscosity: ViscosityArgs,
-    /// Output file: CSV, or JSON lines when it ends in .jsonl
+    /// Output file: CSV, or JSON lines when it ends in .jsonl; `-` writes CSV to standard output
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
     /// Leave out the elapsed_seconds column, so identical runs give identical files

@@ -15,9 +15,16 @@ pub fn threads(n: Option<usize>) -> anyhow::Result<()> {
         if n == 0 {
             return Err(input("--threads must be at least 1 (got 0)"));
         }
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .build_global()?;
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(n);
+        // one thread: this one (a pool of one spawned thread cost a small
+        // sweep a tenth of a millisecond and a hand-over a point; the
+        // commands use rayon's joins only, which this thread runs itself)
+        let pool = if n == 1 {
+            pool.use_current_thread()
+        } else {
+            pool
+        };
+        pool.build_global()?;
     }
     Ok(())
 }

@@ -28,7 +28,8 @@ pub fn sweep(a: SweepArgs) -> anyhow::Result<()> {
     )?;
     let shard = shard(&a.journal)?;
     let journaled = a.journal.shard.is_some() || a.journal.resume;
-    if journaled && RowFormat::from_path(&a.out) != RowFormat::JsonLines {
+    let to_stdout = a.out.as_os_str() == "-";
+    if journaled && (to_stdout || RowFormat::from_path(&a.out) != RowFormat::JsonLines) {
         return Err(input(
             "--shard and --resume journal into JSON lines: --out must end in .jsonl (join shards with impact merge)",
         ));
@@ -69,8 +70,14 @@ pub fn sweep(a: SweepArgs) -> anyhow::Result<()> {
         done.fresh.into_values().collect::<Vec<Row>>()
     } else {
         let rows = par_map(&points, &Bar::new("points"), row);
-        let format = RowFormat::from_path(&a.out);
-        write_atomically(&a.out, |w| format.write(&rows, timing, w))?;
+        if to_stdout {
+            let mut w = std::io::BufWriter::new(std::io::stdout().lock());
+            RowFormat::Csv.write(&rows, timing, &mut w)?;
+            std::io::Write::flush(&mut w)?;
+        } else {
+            let format = RowFormat::from_path(&a.out);
+            write_atomically(&a.out, |w| format.write(&rows, timing, w))?;
+        }
         rows
     };
     let wall = start.elapsed().as_secs_f64();
@@ -95,7 +102,7 @@ pub fn sweep(a: SweepArgs) -> anyhow::Result<()> {
             String::new()
         }
     );
-    if !journaled {
+    if !journaled && !to_stdout {
         eprintln!("wrote {}", a.out.display());
     }
     Ok(())

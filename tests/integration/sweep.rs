@@ -42,6 +42,20 @@ fn sweep_output_is_identical_whatever_the_thread_count() {
     assert_eq!(texts[0], texts[1]);
     assert_eq!(texts[0], texts[2]);
     assert!(!texts[0].contains("elapsed_seconds"));
+    // `--out -`: the same CSV on standard output, and no file
+    for threads in ["1", "2"] {
+        let out = impact_words(
+            "sweep --x 0.05:0.95:0.05 --alpha 0.005:0.105:0.02 --no-timing --out - --threads",
+            &[threads],
+        );
+        assert!(out.status.success(), "{}", stderr(&out));
+        assert_eq!(String::from_utf8_lossy(&out.stdout), texts[0]);
+    }
+    assert!(!std::path::Path::new("-").exists());
+    // a journal is a file
+    let out = impact_words("sweep --x 0.5 --alpha 0.5 --resume --out -", &[]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(stderr(&out).contains("--out must end in .jsonl"));
 }
 
 #[test]

@@ -457,12 +457,7 @@ impl<R: Real> Tracer<R> {
         self.lanes
             .iter()
             .filter(|l| l.folded)
-            .map(|l| {
-                l.fronts()
-                    .iter()
-                    .take_while(|f| f.born + l.transit <= self.now)
-                    .count() as u64
-            })
+            .map(|l| l.count_born_by(|born| born + l.transit <= self.now))
             .sum()
     }
 
@@ -488,7 +483,7 @@ impl<R: Real> Tracer<R> {
 
     /// Fronts alive now, over all lanes (the run's memory).
     pub fn live_fronts(&self) -> usize {
-        self.lanes.iter().map(|l| l.fronts().len()).sum()
+        self.lanes.iter().map(Lane::len).sum()
     }
 
     /// A first-order bound on how far dropped fronts moved `e`: each left a

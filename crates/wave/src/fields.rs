@@ -99,7 +99,7 @@ impl<R: Real> Tracer<R> {
         if up.folded {
             // fronts past the top are reflections going down
             let mut reflected: Vec<(R, R)> = Vec::new();
-            for f in up.fronts().iter() {
+            for f in up.fronts() {
                 let age = now - f.born;
                 if age >= up.transit {
                     reflected.push((c * (age - up.transit), -f.jump));
@@ -116,13 +116,16 @@ impl<R: Real> Tracer<R> {
             // from the nearest to the top outward
             b.steps = reflected;
         } else {
-            for f in up.fronts().iter().rev() {
+            // the newest fronts are nearest the lane's start
+            for f in up.fronts() {
                 a.steps.push((c * (now - f.born), f.jump));
             }
+            a.steps.reverse();
             let down = &self.lanes[Lane::<R>::index(i, Direction::Down)];
-            for f in down.fronts().iter().rev() {
+            for f in down.fronts() {
                 b.steps.push((c * (now - f.born), f.jump));
             }
+            b.steps.reverse();
         }
         (a, b)
     }

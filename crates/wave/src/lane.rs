@@ -17,7 +17,12 @@ use crate::window::Window;
 use serde::Serialize;
 use std::collections::VecDeque;
 
+mod given;
 mod lattice;
+mod trains;
+
+pub(crate) use given::{Given, foresee};
+pub(crate) use trains::{Ring, Trains};
 
 /// Direction of travel of a front.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
@@ -75,6 +80,13 @@ pub struct Lane<R> {
     pub rule: MergeRule<R>,
     /// Private: every change goes through the methods that keep `head_at`.
     fronts: VecDeque<Front<R>>,
+    /// A leap's trains waiting in an exact lane, in lane order among the
+    /// deque's fronts (`trains.rs`); usually none.
+    trains: VecDeque<Trains<R>>,
+    /// Fronts pushed into and popped from the deque while trains wait
+    /// (counted from when the first came): where the trains sit among them.
+    pushed: u64,
+    popped: u64,
     /// When the head front arrives, kept beside the fronts: the event loop
     /// asks for it several times an event, the lane changes its head about
     /// once.
@@ -110,14 +122,12 @@ impl<R: Real> Lane<R> {
             folded: false,
             rule,
             fronts: VecDeque::new(),
+            trains: VecDeque::new(),
+            pushed: 0,
+            popped: 0,
             head_at: None,
             kept: 0,
         }
-    }
-
-    /// The fronts, oldest first.
-    pub fn fronts(&self) -> &VecDeque<Front<R>> {
-        &self.fronts
     }
 
     /// Replaces the fronts (a leap's rebuilt lanes, in birth order). On a
@@ -135,6 +145,7 @@ impl<R: Real> Lane<R> {
     /// one a lane: a larger lane slowed every event of small runs by 15 %).
     pub fn set_fronts(&mut self, fronts: &[Front<R>], spare: &mut Vec<Front<R>>) {
         self.fronts.clear();
+        self.trains.clear();
         self.kept = 0;
         let MergeRule::Lattice {
             spacing,
@@ -172,9 +183,13 @@ impl<R: Real> Lane<R> {
         self.refresh_head();
     }
 
+    #[inline(always)]
     fn refresh_head(&mut self) {
-        self.head_at = self.fronts.front().map(|f| f.born);
-        self.head_at = self.head_at.map(|born| self.arrival_of(born));
+        let born = match self.trains_head_born() {
+            Some(born) => Some(born),
+            None => self.fronts.front().map(|f| f.born),
+        };
+        self.head_at = born.map(|born| self.arrival_of(born));
     }
 
     /// Index of the lane of `layer` moving in `direction`.
@@ -204,7 +219,7 @@ impl<R: Real> Lane<R> {
     pub fn head_arrival(&self) -> Option<R> {
         debug_assert_eq!(
             self.head_at,
-            self.fronts.front().map(|f| self.arrival_of(f.born))
+            self.fronts().next().map(|f| self.arrival_of(f.born))
         );
         self.head_at
     }
@@ -217,8 +232,15 @@ impl<R: Real> Lane<R> {
     }
 
     /// Takes the head front.
+    #[inline(always)]
     pub fn pop(&mut self) -> Option<Front<R>> {
+        if let Some(t) = self.trains.front()
+            && t.after == self.popped
+        {
+            return Some(self.take_from_trains());
+        }
         let f = self.fronts.pop_front()?;
+        self.popped += 1;
         if f.kept {
             self.kept -= 1;
         }
@@ -232,7 +254,7 @@ impl<R: Real> Lane<R> {
     pub fn push(&mut self, born: R, jump: R, id: u32) -> Pushed<R> {
         match self.rule {
             MergeRule::Simultaneous { window } => {
-                let was_empty = self.fronts.is_empty();
+                let was_empty = self.is_empty();
                 match self.push_exact(born, jump, id, window) {
                     Some((gap, id)) => Pushed::Merged {
                         id,
@@ -262,6 +284,11 @@ impl<R: Real> Lane<R> {
     /// front's id.
     #[inline(always)]
     pub fn push_exact(&mut self, born: R, jump: R, id: u32, window: Window<R>) -> Option<(R, u32)> {
+        if let Some(t) = self.trains.back()
+            && t.after == self.pushed
+        {
+            return self.push_after_trains(born, jump, id, window);
+        }
         if let Some(last) = self.fronts.back_mut() {
             let gap = born - last.born;
             if gap <= window.at(born) {
@@ -277,6 +304,7 @@ impl<R: Real> Lane<R> {
             id,
             kept: false,
         });
+        self.pushed += 1;
         None
     }
 }

@@ -450,23 +450,23 @@ impl<R: Real> Tracer<R> {
         let up = &self.lanes[Lane::<R>::index(i, Direction::Up)];
         let down = &self.lanes[Lane::<R>::index(i, Direction::Down)];
         phases.clear();
-        let fronts = down
-            .fronts()
-            .iter()
-            .map(|f| Phase {
+        phases.reserve(down.len() + up.len());
+        // (`for_each`: the lanes' own `fold`)
+        down.fronts().for_each(|f| {
+            phases.push(Phase {
                 tau: f.born + ti,
                 amp: f.jump,
                 top: None,
-            })
-            .chain(up.fronts().iter().map(|f| {
-                let u = f.born + ti;
-                Phase {
-                    tau: u + ti,
-                    amp: ends.top * f.jump,
-                    top: Some((u, f.jump)),
-                }
-            }));
-        phases.extend(fronts);
+            });
+        });
+        up.fronts().for_each(|f| {
+            let u = f.born + ti;
+            phases.push(Phase {
+                tau: u + ti,
+                amp: ends.top * f.jump,
+                top: Some((u, f.jump)),
+            });
+        });
     }
 
     /// A front for a rebuilt lane.
@@ -548,7 +548,7 @@ impl<R: Real> Tracer<R> {
         self.reschedule_layer(i)?;
         if self.lanes[ui].folded {
             // a folded top has no down lane: its fronts all went up
-            debug_assert!(self.lanes[di].fronts().is_empty());
+            debug_assert!(self.lanes[di].is_empty());
         }
         Ok(())
     }

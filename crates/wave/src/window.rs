@@ -77,6 +77,6 @@ mod tests {
         );
         lane.push(late, 0.5, 0);
         assert!(matches!(lane.push(tie, 0.25, 1), Pushed::Merged { .. }));
-        assert_eq!(lane.fronts().len(), 1);
+        assert_eq!(lane.len(), 1);
     }
 }

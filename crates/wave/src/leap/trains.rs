@@ -1,13 +1,14 @@
 //! Where a leap's fronts go: the trains it sends into the neighbours,
-//! deposited on their lattices in a merged run or spawned front by front
-//! in birth order in an exact one.
+//! deposited on their lattices in a merged run; in an exact one left to
+//! wait in the lane as trains (`lane::Trains`), or, where that cannot be
+//! foreseen, spawned front by front in birth order.
 
 use super::Train;
 use super::crossing::{count_before, pow};
 use crate::engine::Tracer;
 use crate::error::WaveError;
 use crate::geometric::sums;
-use crate::lane::{Direction, Lane, MergeRule};
+use crate::lane::{Direction, Lane, MergeRule, Ring, Trains, foresee};
 use crate::real::Real;
 use crate::window::Window;
 use std::cmp::Ordering;
@@ -46,18 +47,56 @@ impl<R: Real> Spawning<'_, R> {
             }
         }
     }
+
+    /// Leaves the ringing trains waiting in the lane as trains
+    /// (`lane::Trains`), where what [`Spawning::put`] would do with their
+    /// fronts is foreseen (`lane::foresee`): none dropped, the merges among
+    /// them noted as `put` notes them. False, and nothing changed,
+    /// otherwise. Their jumps are added to the layer's base in closed form
+    /// (a sum of geometric series, not front by front: the base, which
+    /// only the fields read, moves by the rounding of that sum).
+    fn keep_waiting(&mut self, rings: &[(usize, Train<R>)]) -> bool {
+        let rings: Vec<Ring<R>> = rings
+            .iter()
+            .map(|&(_, t)| Ring {
+                start: t.start,
+                period: t.period,
+                q: t.q,
+                count: t.count,
+                jump: t.c,
+            })
+            .collect();
+        let Some(mut given) = foresee(&rings, self.window, self.thr, self.lane.newest_born())
+        else {
+            return false;
+        };
+        for r in &rings {
+            self.total += r.jump * sums(r.q, r.count).0;
+        }
+        self.merges.append(&mut given.gaps);
+        let held = given.held;
+        self.lane
+            .add_trains(Trains::new(rings, self.window, given, self.id));
+        // (ids mean something only when fronts are recorded, and then no
+        // layer leaps)
+        self.id = self.id.wrapping_add(held as u32);
+        true
+    }
 }
 
 /// The births of ringing trains round by round: round `k` of every train
 /// (sorted by start), then round `k + 1`; jumps by one product a round.
-fn rounds<R: Real>(rings: &[(usize, Train<R>)], mut put: impl FnMut(R, R)) {
+/// Stops when `put` says no.
+fn rounds<R: Real>(rings: &[(usize, Train<R>)], mut put: impl FnMut(R, R) -> bool) {
     let count = rings.iter().map(|t| t.1.count).max().unwrap_or(0);
     let mut jumps: Vec<R> = rings.iter().map(|t| t.1.c).collect();
     for k in 0..count {
         let kk = R::of(k as f64);
         for ((_, t), jump) in rings.iter().zip(jumps.iter_mut()) {
             if k < t.count {
-                put(t.start + kk * t.period, *jump);
+                if !put(t.start + kk * t.period, *jump) {
+                    return;
+                }
                 *jump = *jump * t.q;
             }
         }
@@ -213,6 +252,8 @@ impl<R: Real> Tracer<R> {
     /// as the leap began), then the ringing trains round by round. That is
     /// birth order when their starts lie within one period, as a leap's
     /// do; otherwise (rounding at the edge) the births are sorted first.
+    /// The ringing trains are left to wait as trains where what spawning
+    /// them would do is foreseen ([`Spawning::keep_waiting`]).
     pub(super) fn place_exact_trains(&mut self) -> Result<(), WaveError> {
         if self.exact_trains.is_empty() {
             return Ok(());
@@ -245,15 +286,24 @@ impl<R: Real> Tracer<R> {
                 dropped: Vec::new(),
                 merges: Vec::new(),
             };
-            into.lane.reserve(births as usize);
             if in_rounds(singles, rings) {
                 for t in singles {
                     into.put(t.1.start, t.1.c);
                 }
-                rounds(rings, |born, jump| into.put(born, jump));
+                if !into.keep_waiting(rings) {
+                    into.lane.reserve(births as usize);
+                    rounds(rings, |born, jump| {
+                        into.put(born, jump);
+                        true
+                    });
+                }
             } else {
+                into.lane.reserve(births as usize);
                 let mut all: Vec<(R, R)> = singles.iter().map(|t| (t.1.start, t.1.c)).collect();
-                rounds(rings, |born, jump| all.push((born, jump)));
+                rounds(rings, |born, jump| {
+                    all.push((born, jump));
+                    true
+                });
                 all.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap_or(Ordering::Equal));
                 for (born, jump) in all {
                     into.put(born, jump);
