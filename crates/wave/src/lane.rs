@@ -87,6 +87,9 @@ pub struct Lane<R> {
     /// (counted from when the first came): where the trains sit among them.
     pushed: u64,
     popped: u64,
+    /// Whether the newest front is in the waiting trains: a push then may
+    /// merge into their last (one flag, read on every push).
+    newest_waiting: bool,
     /// When the head front arrives, kept beside the fronts: the event loop
     /// asks for it several times an event, the lane changes its head about
     /// once.
@@ -123,6 +126,7 @@ impl<R: Real> Lane<R> {
             rule,
             fronts: VecDeque::new(),
             trains: VecDeque::new(),
+            newest_waiting: false,
             pushed: 0,
             popped: 0,
             head_at: None,
@@ -146,6 +150,7 @@ impl<R: Real> Lane<R> {
     pub fn set_fronts(&mut self, fronts: &[Front<R>], spare: &mut Vec<Front<R>>) {
         self.fronts.clear();
         self.trains.clear();
+        self.newest_waiting = false;
         self.kept = 0;
         let MergeRule::Lattice {
             spacing,
@@ -253,18 +258,7 @@ impl<R: Real> Lane<R> {
     #[inline]
     pub fn push(&mut self, born: R, jump: R, id: u32) -> Pushed<R> {
         match self.rule {
-            MergeRule::Simultaneous { window } => {
-                let was_empty = self.is_empty();
-                match self.push_exact(born, jump, id, window) {
-                    Some((gap, id)) => Pushed::Merged {
-                        id,
-                        moved_head: false,
-                        beyond_simultaneity: false,
-                        gap,
-                    },
-                    None => Pushed::New { was_empty },
-                }
-            }
+            MergeRule::Simultaneous { window } => self.push_on_exact(born, jump, id, window),
             MergeRule::Lattice {
                 spacing,
                 keep_above,
@@ -284,20 +278,46 @@ impl<R: Real> Lane<R> {
     /// front's id.
     #[inline(always)]
     pub fn push_exact(&mut self, born: R, jump: R, id: u32, window: Window<R>) -> Option<(R, u32)> {
-        if let Some(t) = self.trains.back()
-            && t.after == self.pushed
-        {
-            return self.push_after_trains(born, jump, id, window);
+        match self.push_on_exact(born, jump, id, window) {
+            Pushed::Merged { gap, id, .. } => Some((gap, id)),
+            Pushed::New { .. } => None,
         }
-        if let Some(last) = self.fronts.back_mut() {
-            let gap = born - last.born;
-            if gap <= window.at(born) {
-                last.jump += jump;
-                return Some((gap, last.id));
+    }
+
+    /// [`Lane::push`] under [`MergeRule::Simultaneous`].
+    #[inline(always)]
+    fn push_on_exact(&mut self, born: R, jump: R, id: u32, window: Window<R>) -> Pushed<R> {
+        debug_assert_eq!(
+            self.newest_waiting,
+            self.trains.back().is_some_and(|t| t.after == self.pushed)
+        );
+        let merged = |gap, id| Pushed::Merged {
+            id,
+            moved_head: false,
+            beyond_simultaneity: false,
+            gap,
+        };
+        if self.newest_waiting {
+            return match self.push_after_trains(born, jump, id, window) {
+                Some((gap, id)) => merged(gap, id),
+                None => Pushed::New { was_empty: false },
+            };
+        }
+        // (with no trains newest, an empty deque is an empty lane)
+        let was_empty = match self.fronts.back_mut() {
+            Some(last) => {
+                let gap = born - last.born;
+                if gap <= window.at(born) {
+                    last.jump += jump;
+                    return merged(gap, last.id);
+                }
+                false
             }
-        } else {
-            self.head_at = Some(self.arrival_of(born));
-        }
+            None => {
+                self.head_at = Some(self.arrival_of(born));
+                true
+            }
+        };
         self.fronts.push_back(Front {
             born,
             jump,
@@ -305,7 +325,7 @@ impl<R: Real> Lane<R> {
             kept: false,
         });
         self.pushed += 1;
-        None
+        Pushed::New { was_empty }
     }
 }
 

@@ -251,10 +251,16 @@ impl<R: Real> Lane<R> {
 
     /// The birth of the newest front, if any.
     pub(crate) fn newest_born(&self) -> Option<R> {
-        match self.trains.back() {
-            Some(t) if t.after == self.pushed => Some(t.last_born),
-            _ => self.fronts.back().map(|f| f.born),
+        if self.newest_waiting {
+            self.newest_born_waiting()
+        } else {
+            self.fronts.back().map(|f| f.born)
         }
+    }
+
+    /// The birth of the newest waiting trains' last front.
+    fn newest_born_waiting(&self) -> Option<R> {
+        self.trains.back().map(|t| t.last_born)
     }
 
     /// Puts a leap's trains behind the newest front (an exact lane's; the
@@ -273,6 +279,7 @@ impl<R: Real> Lane<R> {
         trains.after = self.pushed;
         let was_empty = self.is_empty();
         self.trains.push_back(trains);
+        self.newest_waiting = true;
         if was_empty {
             self.refresh_head();
         }
@@ -309,6 +316,8 @@ impl<R: Real> Lane<R> {
         };
         if done {
             self.trains.pop_front();
+            // (the newest too, if none wait now)
+            self.newest_waiting &= !self.trains.is_empty();
         }
         self.refresh_head();
         front
@@ -327,7 +336,8 @@ impl<R: Real> Lane<R> {
         window: Window<R>,
     ) -> Option<(R, u32)> {
         let within = |last: R| born - last <= window.at(born);
-        if !self.newest_born().is_some_and(within) {
+        self.newest_waiting = false;
+        if !self.newest_born_waiting().is_some_and(within) {
             self.push_behind(born, jump, id);
             return None;
         }
