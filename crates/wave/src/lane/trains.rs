@@ -12,10 +12,11 @@
 //!
 //! Nothing changes but when the arithmetic is done: the fronts come out in
 //! the order, with the births (`start + k P`) and the jumps (one product a
-//! round) that spawning them one by one gave (`leap::trains`). The leap
-//! keeps trains only when that spawning would have neither merged nor
-//! dropped a front; it checks by running the same arithmetic without
-//! storing the fronts (`Tracer::place_exact_trains`).
+//! round) that spawning them one by one gave (`leap::trains`), merged as
+//! the lane merged them. The leap keeps trains waiting only where what
+//! spawning would do is foreseen (`lane::given`): no front dropped, none
+//! merged into the lane's newest; otherwise, and for short trains, it
+//! spawns them as before (`Tracer::place_exact_trains`).
 
 use super::{Front, Given, Lane};
 use crate::real::Real;
