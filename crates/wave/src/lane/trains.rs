@@ -288,11 +288,12 @@ impl<R: Real> Lane<R> {
 
     /// How many fronts were born by the time `born_by` turns false (a
     /// predicate of the birth, true up to some birth and false after): the
-    /// deque's counted one by one, the waiting trains' in closed form
+    /// deque's and the waiting trains' by bisection
     /// (a run stopped with a leap's trains in a folded top counts the
     /// reflections they made at the top).
     pub(crate) fn count_born_by(&self, born_by: impl Fn(R) -> bool) -> u64 {
-        let deque = self.fronts.iter().take_while(|f| born_by(f.born)).count() as u64;
+        // (births only grow along the deque: a bisection)
+        let deque = self.fronts.partition_point(|f| born_by(f.born)) as u64;
         let waiting: u64 = self.trains.iter().map(|t| t.count_born_by(&born_by)).sum();
         deque + waiting
     }
