@@ -151,6 +151,27 @@ pub struct WaveConfig {
     /// shows every event). Off: every boundary event goes through the
     /// loop, the reference the leaps are tested against.
     pub leap_quiet_layers: bool,
+    /// Which leaps take in the fronts their neighbours' lanes already hold
+    /// (`leap/arrivals.rs`), instead of stopping before the first: a fast
+    /// layer between two lattices then leaps a neighbour's transit, not a
+    /// lattice cell. Default [`LeapArrivals::Merged`].
+    pub leap_arrivals: LeapArrivals,
+}
+
+/// Which leaps take in their neighbours' arrivals (see
+/// [`WaveConfig::leap_arrivals`]); the bottom layer's never do (its wall
+/// decisions are found over the fronts it holds as the leap begins).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LeapArrivals {
+    /// None: every leap stops before the first arrival from outside.
+    Never,
+    /// A merged run's, where the longer window pays for the arrivals.
+    #[default]
+    Merged,
+    /// Every run's, whatever they cost: what an exact run's trains then
+    /// give is tested against the event loop to rounding.
+    Always,
 }
 
 impl Default for WaveConfig {
@@ -166,6 +187,7 @@ impl Default for WaveConfig {
             max_time_factor: 1e4,
             record: Record::default(),
             leap_quiet_layers: true,
+            leap_arrivals: LeapArrivals::Merged,
         }
     }
 }

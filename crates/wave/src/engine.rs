@@ -6,7 +6,7 @@
 //! heights are converted back to the scene's units, exactly (the scales are
 //! powers of two), only where they leave the engine.
 
-use crate::config::{Record, Resolution, StopRule, WaveConfig};
+use crate::config::{LeapArrivals, Record, Resolution, StopRule, WaveConfig};
 use crate::error::WaveError;
 use crate::lane::{Direction, Lane, MergeRule, Pushed};
 use crate::leap::Train;
@@ -193,6 +193,10 @@ pub struct Tracer<R: Real> {
     pub(crate) merged: bool,
     /// Whether quiet layers are leapt (see `leap.rs`).
     pub(crate) leaps: bool,
+    /// Which leaps take in their neighbours' arrivals, and how many they
+    /// took.
+    pub(crate) leap_arrivals: LeapArrivals,
+    pub(crate) arrivals_taken: u64,
     max_events: u64,
     pub(crate) max_time: R,
     stop_rule: StopRule,
@@ -376,6 +380,8 @@ impl<R: Real> Tracer<R> {
             grazing_strain: of(config.grazing_tolerance) * vb / c0,
             merged,
             leaps,
+            leap_arrivals: config.leap_arrivals,
+            arrivals_taken: 0,
             max_events: config.max_events,
             max_time: of(config.max_time_factor * transit_sum),
             stop_rule: config.stop,
@@ -469,6 +475,11 @@ impl<R: Real> Tracer<R> {
     /// What was recorded (empty unless asked in the config).
     pub fn recording(&self) -> &Recording {
         &self.recording
+    }
+
+    /// Fronts of neighbouring lanes that leaps took in (`leap/arrivals.rs`).
+    pub fn arrivals_taken(&self) -> u64 {
+        self.arrivals_taken
     }
 
     /// What was dropped and merged so far.
@@ -711,6 +722,22 @@ impl<R: Real> Tracer<R> {
             None => self.queue.cancel(key),
         }
         Ok(Some((jump, front.id)))
+    }
+
+    /// Takes the head of lane `index` without an event (a leap takes it
+    /// in): the jump it delivers. A folded lane's front reflected at the
+    /// top on its way, an event of the unfolded engine counted as
+    /// [`Tracer::take_head`] counts it. The caller puts the layer back in
+    /// the queue.
+    pub(crate) fn pop_delivered(&mut self, index: usize) -> Option<R> {
+        let lane = &mut self.lanes[index];
+        let front = lane.pop()?;
+        let jump = lane.delivered(front.jump);
+        if lane.folded {
+            self.folded_reflections += 1;
+            self.down_base[lane.layer] -= front.jump;
+        }
+        Some(jump)
     }
 
     /// The lane of `layer` whose head arrives first (the up lane on a tie,

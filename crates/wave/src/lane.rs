@@ -236,6 +236,15 @@ impl<R: Real> Lane<R> {
         if self.folded { -jump } else { jump }
     }
 
+    /// How many fronts arrive before `h` (fronts are in birth order; with
+    /// trains waiting, all of them, an upper bound).
+    pub(crate) fn arriving_before(&self, h: R) -> usize {
+        if !self.trains.is_empty() {
+            return self.len();
+        }
+        self.fronts.partition_point(|f| self.arrival_of(f.born) < h)
+    }
+
     /// Takes the head front.
     #[inline(always)]
     pub fn pop(&mut self) -> Option<Front<R>> {

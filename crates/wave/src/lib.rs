@@ -30,7 +30,7 @@ mod solve;
 mod wall;
 mod window;
 
-pub use config::{Precision, Record, Resolution, StopRule, WaveConfig};
+pub use config::{LeapArrivals, Precision, Record, Resolution, StopRule, WaveConfig};
 pub use engine::{Decisions, Step, StepKind, Tracer, WaveEngine};
 pub use error::WaveError;
 pub use fields::{FieldSample, FieldTotals};

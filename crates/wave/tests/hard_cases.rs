@@ -315,10 +315,26 @@ fn survey_rod_0() -> impact_model::Rod {
 fn a_ladder_cut_short_by_max_events_reports_what_finished() {
     let rod = survey_rod_0();
     let full = simulate(&rod, &WaveConfig::default()).unwrap();
+    // a limit the second level fits in and the third (at least twice its
+    // work) does not: one and a half times the second level's work (the
+    // ladder starts at 0.2 of each transit and 4e-3 of the longest)
+    let second = {
+        let config = WaveConfig {
+            resolution: Resolution::Merged {
+                per_transit: 0.1,
+                per_longest: 2e-3,
+            },
+            ..WaveConfig::default()
+        };
+        let mut engine = impact_wave::WaveEngine::new(&rod, config).unwrap();
+        engine.run().unwrap();
+        engine.steps()
+    };
+    let limit = second * 3 / 2;
     let short = simulate(
         &rod,
         &WaveConfig {
-            max_events: 300_000,
+            max_events: limit,
             ..WaveConfig::default()
         },
     )
@@ -328,8 +344,8 @@ fn a_ladder_cut_short_by_max_events_reports_what_finished() {
     // cut short before it ran (the level before took over half the
     // limit) or while it ran
     assert!(
-        method.contains("past the limit of 300000")
-            || method.contains("did not finish within 300000 events"),
+        method.contains(&format!("past the limit of {limit}"))
+            || method.contains(&format!("did not finish within {limit} events")),
         "{method}"
     );
     assert!(method.contains("rests on 2 levels"), "{method}");

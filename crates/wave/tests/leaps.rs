@@ -7,7 +7,9 @@
 mod common;
 use common::{XorShift, exact_run, random_scene};
 use impact_model::{Bilayer, Outcome, Rod};
-use impact_wave::{Resolution, StepKind, WaveConfig, WaveEngine, WaveError};
+use impact_wave::{
+    LeapArrivals, Resolution, StepKind, WaveConfig, WaveEngine, WaveError, simulate,
+};
 
 /// The loop's events an exact reference may take (a few tenths of a second).
 const EXACT_EVENTS: u64 = 3_000_000;
@@ -134,4 +136,298 @@ fn every_leap_keeps_the_energy_in_the_fields() {
     }
     eprintln!("{} rods, {leaps} leaps", rods.len());
     assert!(leaps >= 15, "only {leaps} leaps: the test proves little");
+}
+
+/// A rod of layers with the given transit times (lengths and densities
+/// drawn).
+fn with_transits(rng: &mut XorShift, transits: &[f64]) -> Rod {
+    let layers = transits
+        .iter()
+        .map(|&transit| {
+            let length = rng.uniform(0.3, 1.0);
+            let density = rng.log_uniform(0.3, 3.0);
+            let speed = length / transit;
+            impact_model::Layer::elastic(length, density * speed * speed, density)
+        })
+        .collect();
+    let scene = impact_model::Scene {
+        impact_speed: 1.0,
+        layers,
+        wall_contact: None,
+    };
+    scene.validate().expect("a valid rod")
+}
+
+/// A rod whose layer `fast` has a transit `ratio` times shorter than its
+/// neighbours': what a leap that takes its neighbours' arrivals is for.
+fn fast_between(rng: &mut XorShift, layers: usize, fast: usize, ratio: f64) -> Rod {
+    let transits: Vec<f64> = (0..layers)
+        .map(|i| {
+            if i == fast {
+                1.0 / ratio
+            } else {
+                rng.uniform(0.3, 1.0)
+            }
+        })
+        .collect();
+    with_transits(rng, &transits)
+}
+
+/// Leaps that take in their neighbours' arrivals (`leap/arrivals.rs`),
+/// made to in exact runs (`LeapArrivals::Always`), against the event loop:
+/// the arrivals' reflections and transmissions, the layer's bases, a
+/// folded top's fronts and the drops they take must change nothing but
+/// rounding. Fast layers in the middle of three- to five-layer rods, under
+/// the (folded) top among them, and random rods.
+#[test]
+fn leaps_taking_arrivals_agree_with_the_event_loop_to_rounding() {
+    let mut rng = XorShift(0xa771_7a15_0000_0005);
+    let mut rods: Vec<(String, Rod)> = Vec::new();
+    for layers in 3..=5 {
+        for fast in 1..layers - 1 {
+            for ratio in [30.0, 200.0] {
+                let rod = fast_between(&mut rng, layers, fast, ratio);
+                rods.push((format!("layer {fast} of {layers}, {ratio}x faster"), rod));
+            }
+        }
+    }
+    while rods.len() < 40 {
+        let rod = random_rod(&mut rng);
+        rods.push((format!("random rod {}", rods.len()), rod));
+    }
+    let taking = WaveConfig {
+        resolution: Resolution::Exact,
+        precision: impact_wave::Precision::Double,
+        leap_arrivals: LeapArrivals::Always,
+        // (forced, taking may cost more than the loop: births are spawned
+        // one by one in an exact run)
+        max_events: 4 * EXACT_EVENTS,
+        ..WaveConfig::default()
+    };
+    let (mut took, mut compared) = (0, 0);
+    let mut worst: f64 = 0.0;
+    for (label, rod) in &rods {
+        let Some(loop_run) = exact_run(rod, EXACT_EVENTS, false) else {
+            eprintln!("{label}: the loop needs over {EXACT_EVENTS} events");
+            continue;
+        };
+        let leaping = match simulate(rod, &taking) {
+            Ok(o) => o,
+            Err(WaveError::EventLimit { .. }) => {
+                eprintln!(
+                    "{label}: taking every arrival needs over {} steps",
+                    taking.max_events
+                );
+                continue;
+            }
+            Err(e) => panic!("{label}: {e}"),
+        };
+        let mut engine = WaveEngine::new(rod, taking.clone()).expect("a valid rod");
+        engine.run().expect("it finished once");
+        compared += 1;
+        took += usize::from(engine.arrivals_taken() > 0);
+        let d = (leaping.restitution - loop_run.restitution).abs();
+        let bound = leaping.error_bound.unwrap() + loop_run.error_bound.unwrap();
+        worst = worst.max(d / bound);
+        eprintln!(
+            "{label}: {} arrivals taken, |de| = {d:.1e}, {:.3} of the bounds",
+            engine.arrivals_taken(),
+            d / bound
+        );
+        assert!(
+            d <= bound,
+            "{label}: e {} vs {} (bounds {bound:.1e})",
+            leaping.restitution,
+            loop_run.restitution
+        );
+        assert_eq!(leaping.separations, loop_run.separations, "{label}");
+        assert_eq!(leaping.bounces, loop_run.bounces, "{label}");
+        let (a, b) = (leaping.contact_time, loop_run.contact_time);
+        assert!((a - b).abs() <= 1e-9 * b, "{label}: t_c {a} vs {b}");
+    }
+    eprintln!(
+        "{compared} rods compared, {took} took arrivals, worst |de| {worst:.3} of the bounds"
+    );
+    assert!(
+        took >= 12,
+        "only {took} rods took arrivals: the comparison proves little"
+    );
+}
+
+/// After every leap that takes arrivals, the fields the fronts carry keep
+/// the balances: in exact runs (made to take them) the rod's energy; in
+/// merged runs (where they take them by default) the momentum the wall's
+/// impulse leaves (a lattice deposit keeps each front's jump and first
+/// moment, so the momentum is exact). The bases the arrivals move are read
+/// by the fields only, so this is where a wrong one shows.
+#[test]
+fn leaps_taking_arrivals_keep_the_balances() {
+    let mut rng = XorShift(0xba1a_9ce5_0000_0007);
+    let mut checked = (0, 0);
+    // a fast layer between slow ones, and, as on the layer survey's rods
+    // where merged runs take arrivals, beside a layer of intermediate
+    // transit (its lattice coarse enough for the leap to pay)
+    let shapes: [&[f64]; 6] = [
+        &[0.5, 0.01, 0.4],
+        &[0.7, 0.4, 0.005, 0.6],
+        &[0.5, 0.3, 0.6, 0.01, 0.4],
+        &[0.5, 5e-3, 5e-5, 0.4],
+        &[0.4, 0.6, 4e-3, 4e-5],
+        &[0.5, 3e-5, 3e-3, 0.5, 0.3],
+    ];
+    for k in 0..12 {
+        let rod = with_transits(&mut rng, shapes[k % shapes.len()]);
+        let e0 = rod.initial_energy();
+        let p0 = rod.mass() * rod.impact_speed();
+        for resolution in [
+            Resolution::Exact,
+            Resolution::Merged {
+                per_transit: 0.1,
+                per_longest: 2e-3,
+            },
+        ] {
+            let exact = resolution == Resolution::Exact;
+            let config = WaveConfig {
+                resolution,
+                leap_arrivals: if exact {
+                    LeapArrivals::Always
+                } else {
+                    LeapArrivals::Merged
+                },
+                max_events: 200_000,
+                ..WaveConfig::default()
+            };
+            let mut engine = WaveEngine::new(&rod, config).unwrap();
+            let mut taken = 0;
+            while engine.stopped().is_none() {
+                match engine.step() {
+                    Ok(_) if engine.arrivals_taken() == taken => continue,
+                    Ok(_) => taken = engine.arrivals_taken(),
+                    Err(WaveError::EventLimit { .. }) => break,
+                    Err(e) => panic!("rod {k}: {e}"),
+                }
+                let f = engine.field_totals();
+                let t = engine.time();
+                if exact {
+                    checked.0 += 1;
+                    assert!(
+                        (f.energy - e0).abs() <= 1e-11 * e0,
+                        "rod {k} at t = {t}: energy {} of {e0}",
+                        f.energy
+                    );
+                } else {
+                    checked.1 += 1;
+                    // (deposits split each front between two lattice
+                    // points in proportions rounded at `t / spacing` ulps:
+                    // up to 2.5e-10 of `M v_b` measured on these rods,
+                    // whether arrivals are taken or not; a wrong base or
+                    // coefficient is off by a front's jump)
+                    let p = p0 * engine.restitution();
+                    assert!(
+                        (f.momentum - p).abs() <= 1e-9 * p0,
+                        "rod {k} at t = {t}: momentum {} against the impulse's {p} ({:?})",
+                        f.momentum,
+                        engine.truncation()
+                    );
+                }
+            }
+        }
+    }
+    eprintln!(
+        "{} exact and {} merged leaps that took arrivals checked",
+        checked.0, checked.1
+    );
+    assert!(
+        checked.0 >= 100 && checked.1 >= 100,
+        "{checked:?}: the test proves little"
+    );
+}
+
+/// Rods with a fast layer beside one of intermediate transit, as on the
+/// layer survey's rods where taking arrivals pays; lengths and densities
+/// drawn from `seed`.
+fn ladder_rods(seed: u64, count: usize) -> Vec<Rod> {
+    let mut rng = XorShift(seed);
+    let shapes: [&[f64]; 4] = [
+        &[0.5, 2e-2, 4e-4, 0.4],
+        &[0.4, 0.6, 1e-2, 2e-4],
+        &[0.5, 3e-4, 1e-2, 0.5],
+        &[0.6, 0.3, 2e-2, 5e-4, 0.4],
+    ];
+    (0..count)
+        .map(|k| with_transits(&mut rng, shapes[k % shapes.len()]))
+        .collect()
+}
+
+/// The automatic resolution made to take the merged ladder (the exact run
+/// is given a thousand events).
+fn forced_ladder() -> WaveConfig {
+    WaveConfig {
+        resolution: Resolution::Auto {
+            exact_events: 1_000,
+            budget_events: 4_000_000,
+            target: 1e-5,
+        },
+        ..WaveConfig::default()
+    }
+}
+
+/// `|e_ladder - e_exact|` and the two runs' bounds, and the arrivals the
+/// reported level's leaps took; `None` if the exact run needs too long.
+fn ladder_against_exact(rod: &Rod) -> Option<(f64, f64, u64)> {
+    let exact = exact_run(rod, 20 * EXACT_EVENTS, true)?;
+    let solution = impact_wave::solve(rod, &forced_ladder()).expect("a ladder finishes");
+    let merged = &solution.outcome;
+    let bound = merged.error_bound.unwrap() + exact.error_bound.unwrap();
+    let d = (merged.restitution - exact.restitution).abs();
+    Some((d, bound, solution.engine.arrivals_taken()))
+}
+
+/// The seed of [`ladder_rods`] for the two tests below.
+const LADDER_SEED: u64 = 0x1add_e125_0000_0009;
+
+/// Rod 3 of that draw: [`a_merged_bound_can_sit_on_a_plateau`].
+const PLATEAU_ROD: usize = 3;
+
+/// Merged ladders whose leaps take arrivals and deposit their trains
+/// together (the default), made to run on rods the exact engine can
+/// finish: the exact `e` lies within the bound the ladder reports. One rod
+/// of the draw is left to the test below, where the bound fails (with or
+/// without arrivals taken).
+#[test]
+fn ladders_taking_arrivals_hold_their_bound_of_the_exact_e() {
+    let (mut compared, mut took) = (0, 0);
+    for (k, rod) in ladder_rods(LADDER_SEED, 12).iter().enumerate() {
+        if k == PLATEAU_ROD {
+            continue;
+        }
+        let Some((d, bound, taken)) = ladder_against_exact(rod) else {
+            eprintln!("rod {k}: the exact run needs too many events");
+            continue;
+        };
+        eprintln!("rod {k}: |de| = {d:.1e} under a bound of {bound:.1e}, {taken} arrivals taken");
+        assert!(d <= bound, "rod {k}: |de| = {d:e} over the bound {bound:e}");
+        compared += 1;
+        took += usize::from(taken > 0);
+    }
+    assert!(
+        compared >= 8 && took >= 4,
+        "{compared} compared, {took} took arrivals"
+    );
+}
+
+/// A known defect, kept failing in view (`cargo test -- --ignored`): the
+/// merged bound rests on how `e` changes between lattices, and on this
+/// five-layer rod (transits 0.6, 0.3, 0.02, 5e-4, 0.4) `e` sits on a
+/// plateau. The error is set by the slow lanes' lattice (a share of the
+/// longest transit): about `2.0e-6` over the first four levels, then
+/// `1.6e-6` and `0.85e-6`, while the levels differ by `1e-7` or less; the
+/// ladder stops at the third with a bound of `1.2e-6` against an error of
+/// `2.0e-6`. The same with arrivals never taken (the engine before them).
+#[test]
+#[ignore = "known defect: the merged bound misses a plateau (ARCHITECTURE.md)"]
+fn a_merged_bound_can_sit_on_a_plateau() {
+    let rod = &ladder_rods(LADDER_SEED, PLATEAU_ROD + 1)[PLATEAU_ROD];
+    let (d, bound, _) = ladder_against_exact(rod).expect("an exact run in reach");
+    assert!(d <= bound, "|de| = {d:e} over the bound {bound:e}");
 }
