@@ -35,6 +35,25 @@ fn random_rod(rng: &mut XorShift) -> Rod {
         .expect("a valid random rod")
 }
 
+/// Asserts that a leaping run agrees with the loop: `e` within the two
+/// runs' bounds, the same separations and bounces, `t_c` to `1e-9`; the
+/// difference as a fraction of the bounds.
+fn assert_agrees_with_the_loop(label: &str, leaping: &Outcome, loop_run: &Outcome) -> f64 {
+    let d = (leaping.restitution - loop_run.restitution).abs();
+    let bound = leaping.error_bound.unwrap() + loop_run.error_bound.unwrap();
+    assert!(
+        d <= bound,
+        "{label}: e {} vs {} (bounds {bound:.1e})",
+        leaping.restitution,
+        loop_run.restitution
+    );
+    assert_eq!(leaping.separations, loop_run.separations, "{label}");
+    assert_eq!(leaping.bounces, loop_run.bounces, "{label}");
+    let (a, b) = (leaping.contact_time, loop_run.contact_time);
+    assert!((a - b).abs() <= 1e-9 * b, "{label}: t_c {a} vs {b}");
+    d / bound
+}
+
 /// The paper's stiff-bottom corner, its fast tops, and random rods of two to
 /// six layers with unequal densities: leaping changes rounding, nothing
 /// else.
@@ -68,23 +87,9 @@ fn exact_leaps_agree_with_the_event_loop_to_rounding() {
         let (leaping, leaped) = exact(rod, true).expect("a leaping run takes fewer steps");
         compared += 1;
         leapt += usize::from(leaped > 0);
-        let d = (leaping.restitution - loop_run.restitution).abs();
-        let bound = leaping.error_bound.unwrap() + loop_run.error_bound.unwrap();
-        worst = worst.max(d / bound);
-        eprintln!(
-            "{label}: {leaped} events leapt, |de| = {d:.1e}, {:.3} of the bounds",
-            d / bound
-        );
-        assert!(
-            d <= bound,
-            "{label}: e {} vs {} (bounds {bound:.1e})",
-            leaping.restitution,
-            loop_run.restitution
-        );
-        assert_eq!(leaping.separations, loop_run.separations, "{label}");
-        assert_eq!(leaping.bounces, loop_run.bounces, "{label}");
-        let (a, b) = (leaping.contact_time, loop_run.contact_time);
-        assert!((a - b).abs() <= 1e-9 * b, "{label}: t_c {a} vs {b}");
+        let share = assert_agrees_with_the_loop(label, &leaping, &loop_run);
+        worst = worst.max(share);
+        eprintln!("{label}: {leaped} events leapt, {share:.3} of the bounds");
     }
     eprintln!("{compared} rods compared, {leapt} leapt, worst |de| {worst:.3} of the bounds");
     assert!(
@@ -226,24 +231,12 @@ fn leaps_taking_arrivals_agree_with_the_event_loop_to_rounding() {
         engine.run().expect("it finished once");
         compared += 1;
         took += usize::from(engine.arrivals_taken() > 0);
-        let d = (leaping.restitution - loop_run.restitution).abs();
-        let bound = leaping.error_bound.unwrap() + loop_run.error_bound.unwrap();
-        worst = worst.max(d / bound);
+        let share = assert_agrees_with_the_loop(label, &leaping, &loop_run);
+        worst = worst.max(share);
         eprintln!(
-            "{label}: {} arrivals taken, |de| = {d:.1e}, {:.3} of the bounds",
-            engine.arrivals_taken(),
-            d / bound
+            "{label}: {} arrivals taken, {share:.3} of the bounds",
+            engine.arrivals_taken()
         );
-        assert!(
-            d <= bound,
-            "{label}: e {} vs {} (bounds {bound:.1e})",
-            leaping.restitution,
-            loop_run.restitution
-        );
-        assert_eq!(leaping.separations, loop_run.separations, "{label}");
-        assert_eq!(leaping.bounces, loop_run.bounces, "{label}");
-        let (a, b) = (leaping.contact_time, loop_run.contact_time);
-        assert!((a - b).abs() <= 1e-9 * b, "{label}: t_c {a} vs {b}");
     }
     eprintln!(
         "{compared} rods compared, {took} took arrivals, worst |de| {worst:.3} of the bounds"
