@@ -14,6 +14,7 @@ over 1 s, and how many did not finish within --timeout.
     python3 scripts/survey-layers.py                 # 40 rods, seed 7
     python3 scripts/survey-layers.py --rods 100 --seed 1 --timeout 120
     IMPACT=path/to/impact python3 scripts/survey-layers.py
+    python3 scripts/survey-layers.py --keep rods/    # keep the scenes (rodNNN.json)
 
 Not run by CI (minutes, and timings). Needs only Python 3 and the binary
 (cargo builds it when target/release/impact is missing).
@@ -56,6 +57,8 @@ def main():
     parser.add_argument("--speeds", type=float, default=6.0,
                         help="decades of wave speed, and the largest transit ratio's (default 6)")
     parser.add_argument("--timeout", type=float, default=60.0, help="seconds per rod (default 60)")
+    parser.add_argument("--keep", type=Path, metavar="DIR",
+                        help="write each rod's scene to DIR/rodNNN.json (to rerun one alone)")
     args = parser.parse_args()
     if args.rods < 1 or args.timeout <= 0 or not 0 < args.speeds <= 12:
         print("error: --rods >= 1, --timeout > 0, --speeds in (0, 12]", file=sys.stderr)
@@ -74,6 +77,9 @@ def main():
             scene = draw(rng, args.speeds)
             path = Path(work) / f"rod{k:03d}.json"
             path.write_text(json.dumps(scene))
+            if args.keep:
+                args.keep.mkdir(parents=True, exist_ok=True)
+                (args.keep / path.name).write_text(json.dumps(scene, indent=1))
             transits = [l["length"] / math.sqrt(l["modulus"] / l["density"]) for l in scene["layers"]]
             ratio = max(transits) / min(transits)
             start = time.perf_counter()

@@ -76,7 +76,7 @@ pub struct WaveArgs {
     #[arg(long, value_name = "FRACTION", allow_negative_numbers = true)]
     pub merge_window: Option<f64>,
     /// Work a merged ladder may spend under --resolution auto, in event-loop steps (a leap counts the fronts and lattice cells it handles); the lattices are chosen from it
-    #[arg(long, value_name = "N", default_value_t = 4_000_000)]
+    #[arg(long, value_name = "N", value_parser = parse_count, allow_negative_numbers = true, default_value_t = 4_000_000)]
     pub event_budget: u64,
     /// Target error on e. Exact engine (--resolution auto): refine merged runs until the error bound is at most DE (default 1e-5, or until the budget is spent). Chain on a viscous scene without --n: double N until the extrapolation's error estimate is at most DE (default: N = 250, 500, 1000 only)
     #[arg(long, value_name = "DE", allow_negative_numbers = true)]
@@ -85,7 +85,7 @@ pub struct WaveArgs {
     #[arg(long, value_enum, default_value_t = PrecisionChoice::Checked)]
     pub precision: PrecisionChoice,
     /// Give a run up after this much work: loop events, and the fronts and lattice cells of leaps
-    #[arg(long, value_name = "N", default_value_t = 200_000_000)]
+    #[arg(long, value_name = "N", value_parser = parse_count, allow_negative_numbers = true, default_value_t = 200_000_000)]
     pub max_events: u64,
 }
 
@@ -121,7 +121,7 @@ pub struct ChainArgs {
     )]
     pub dt_factor: f64,
     /// Give the chain up after this many steps
-    #[arg(long, value_name = "N", default_value_t = 2_000_000_000)]
+    #[arg(long, value_name = "N", value_parser = parse_count, allow_negative_numbers = true, default_value_t = 2_000_000_000)]
     pub max_steps: u64,
     /// Which kernel steps a viscous chain (both have the same dt -> 0 limit)
     #[arg(long, value_enum, value_name = "KERNEL", default_value_t = ViscousKernelChoice::Implicit)]
@@ -197,6 +197,29 @@ fn parse_wall_contact(s: &str) -> Result<WallContact, String> {
     s.parse()
 }
 
+/// A count given as an integer (`4000000`, `4_000_000`) or in the
+/// scientific notation physicists write budgets in (`4e6`, `1e8`), if that
+/// names a whole number a `u64` holds.
+fn parse_count(s: &str) -> Result<u64, String> {
+    let digits = s.replace('_', "");
+    if let Ok(n) = digits.parse::<u64>() {
+        return Ok(n);
+    }
+    match digits.parse::<f64>() {
+        // 2^64 is exact in binary: below it, every whole double fits
+        Ok(x) if x >= 0.0 && x.fract() == 0.0 && x < 2f64.powi(64) => Ok(x as u64),
+        _ => Err(format!(
+            "'{s}' is not a whole number from 0 to 1.8e19 (an integer, or like 4e6)"
+        )),
+    }
+}
+
+/// [`parse_count`] for sizes (numbers of masses).
+fn parse_size(s: &str) -> Result<usize, String> {
+    let n = parse_count(s)?;
+    usize::try_from(n).map_err(|_| format!("'{s}' is too large for this machine"))
+}
+
 #[derive(Args, Debug)]
 pub struct RunArgs {
     #[command(flatten)]
@@ -212,12 +235,13 @@ pub struct RunArgs {
     /// Run one chain of N masses. Without it a viscous scene runs chains of
     /// 250, 500 and 1000 masses and extrapolates e to N -> infinity with an
     /// error estimate; an elastic scene on the chain runs the paper's 10^4
-    #[arg(long = "n", value_name = "N")]
+    #[arg(long = "n", value_name = "N", value_parser = parse_size)]
     pub masses: Option<usize>,
     /// The largest chain --target may run
     #[arg(
         long,
         value_name = "N",
+        value_parser = parse_size,
         default_value_t = 64_000,
         conflicts_with = "masses"
     )]
@@ -253,7 +277,7 @@ pub struct SweepArgs {
     #[arg(long)]
     pub no_timing: bool,
     /// Number of masses of the chain (the paper's 10^4); at least one per layer
-    #[arg(long = "n", value_name = "N", default_value_t = 10_000)]
+    #[arg(long = "n", value_name = "N", value_parser = parse_size, default_value_t = 10_000)]
     pub masses: usize,
     /// Worker threads (default: all cores)
     #[arg(long, value_name = "N")]
@@ -356,7 +380,7 @@ pub struct CalibrateArgs {
     #[arg(long, value_name = "LAW", value_parser = parse_wall_contact, default_value = "paper")]
     pub wall_contact: WallContact,
     /// Chain size for --regenerate (each entry uses N and 2N, Richardson-extrapolated)
-    #[arg(long = "n", value_name = "N", default_value_t = 2000)]
+    #[arg(long = "n", value_name = "N", value_parser = parse_size, default_value_t = 2000)]
     pub masses: usize,
     /// Where --regenerate writes the table [default: data/calibration/kelvin-voigt-<LAW>.csv]
     #[arg(long, value_name = "FILE")]
@@ -383,7 +407,7 @@ pub struct DiagramArgs {
     #[arg(long)]
     pub side_by_side: bool,
     /// Number of masses of the chain picture
-    #[arg(long = "n", value_name = "N", default_value_t = 2000)]
+    #[arg(long = "n", value_name = "N", value_parser = parse_size, default_value_t = 2000)]
     pub masses: usize,
     /// Time window start
     #[arg(long, value_name = "T", allow_negative_numbers = true)]

@@ -112,6 +112,14 @@ pub fn summary(title: &str, o: &Timed<Outcome>) -> String {
         if let Some(loss) = est.double_precision_loss {
             parts.push(format!("double precision alone was off by {loss:.1e}"));
         }
+        if est.merged_converging == Some(false) {
+            parts.push(match est.merged_observed_order {
+                Some(order) => format!(
+                    "the merged levels converge at order {order:.1}, not yet seen converging: the merged estimate may be low"
+                ),
+                None => "the merged levels are not yet seen converging: the merged estimate may be low".to_string(),
+            });
+        }
         let _ = writeln!(
             s,
             "  error bound          |e - e_exact| <= {:.1e}  ({})",

@@ -225,3 +225,42 @@ fn engine_ranges_are_worded_as_flags() {
         assert_input_error(&args, needle);
     }
 }
+
+/// Counts may be written as physicists write budgets (`1e8`), but must
+/// name a whole number: a fraction or a negative count is refused, naming
+/// the flag.
+#[test]
+fn counts_take_scientific_notation_but_only_whole_numbers() {
+    let bilayer = ["run", "--x", "0.3", "--alpha", "0.3", "--json"];
+    let plain = impact(&bilayer);
+    for extra in [
+        &["--event-budget", "4e6"][..],
+        &["--max-events", "2e8", "--event-budget", "4_000_000"],
+    ] {
+        let args: Vec<&str> = bilayer.iter().chain(extra).copied().collect();
+        let out = impact(&args);
+        assert!(out.status.success(), "{extra:?}: {}", stderr(&out));
+        let (a, b): (serde_json::Value, serde_json::Value) = (
+            serde_json::from_str(&stdout(&out)).unwrap(),
+            serde_json::from_str(&stdout(&plain)).unwrap(),
+        );
+        // the defaults written another way: the same numbers
+        assert_eq!(a["restitution"], b["restitution"], "{extra:?}");
+        assert_eq!(a["error_bound"], b["error_bound"], "{extra:?}");
+    }
+    for (flag, value) in [
+        ("--event-budget", "1.5"),
+        ("--max-events", "-1e3"),
+        ("--max-events", "1e20"),
+        ("--event-budget", "lots"),
+    ] {
+        let args: Vec<&str> = bilayer.iter().chain(&[flag, value]).copied().collect();
+        assert_input_error(&args, flag);
+        assert_input_error(&args, "not a whole number from 0 to 1.8e19");
+    }
+    let chain = [
+        "run", "--x", "0.3", "--alpha", "0.3", "--engine", "chain", "--n", "2e2", "--json",
+    ];
+    let out = impact(&chain);
+    assert!(out.status.success(), "{}", stderr(&out));
+}

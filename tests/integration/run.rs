@@ -194,3 +194,39 @@ fn rigid_bottom_engine_gives_the_lower_region_limit() {
     let diff = (exact["restitution"].as_f64().unwrap() - 0.6).abs();
     assert!(diff < 1e-9, "{diff}");
 }
+
+/// Two five- and six-layer rods of the layer survey (`scripts/survey-layers.py`,
+/// seed 7, rods 2 and 3) that need the merged ladder: one whose last three
+/// levels' differences grow, one whose shrink. The outcome carries what the
+/// levels showed, and the summary warns exactly when they did not converge.
+#[test]
+fn a_merged_outcome_says_whether_its_levels_converge() {
+    let dir = scratch("merged-convergence");
+    let growing = r#"{"impact_speed": 1.0, "layers": [{"length": 0.24958931338977147, "modulus": 1324775.909843706, "density": 0.2767984455773927}, {"length": 0.3331748164416051, "modulus": 2120843.944515068, "density": 0.689093394914303}, {"length": 0.7709136896467343, "modulus": 201626165.64701295, "density": 1.319819540603312}, {"length": 0.30305571244359136, "modulus": 249.3797035121228, "density": 1.3880617373316597}, {"length": 0.2974305759947334, "modulus": 15726824.814739376, "density": 2.655960008715463}]}"#;
+    let shrinking = r#"{"impact_speed": 1.0, "layers": [{"length": 0.40595871281932655, "modulus": 310389.92387135676, "density": 2.2950911925748465}, {"length": 0.5141471703767915, "modulus": 406758.1313031702, "density": 1.4829405028289155}, {"length": 0.49976699686368237, "modulus": 947746453.1580232, "density": 3.8793499916440046}, {"length": 0.4440965107221529, "modulus": 2826216.751810704, "density": 1.4087937638394294}, {"length": 1.075137495573429, "modulus": 8206.231371372458, "density": 2.876673541372195}, {"length": 1.1801748474925822, "modulus": 17931.037463601337, "density": 0.17223902425235}]}"#;
+    let warning = "the merged estimate may be low";
+    let mut said = [false; 2];
+    for (k, scene) in [growing, shrinking].into_iter().enumerate() {
+        let path = dir.join(format!("rod{k}.json"));
+        std::fs::write(&path, scene).unwrap();
+        let path = path.to_str().unwrap();
+        let v = run_json(&["run", path]);
+        let est = &v["error_estimate"];
+        assert!(
+            est["merged"].as_f64().unwrap() > 0.0,
+            "a merged ladder: {v}"
+        );
+        let converging = est["merged_converging"].as_bool().expect("said");
+        let order = est["merged_observed_order"].as_f64().expect("three levels");
+        // the rule: the differences shrink at order 0.5 or faster
+        assert_eq!(converging, order >= 0.5, "{est}");
+        let method = est["method"].as_str().unwrap();
+        assert_eq!(method.contains("may be low"), !converging, "{method}");
+        let out = impact(&["run", path]);
+        assert!(out.status.success(), "{}", stderr(&out));
+        assert_eq!(stdout(&out).contains(warning), !converging);
+        said[k] = !converging;
+    }
+    // the first rod's differences grow, the second's shrink
+    assert_eq!(said, [true, false]);
+}

@@ -90,6 +90,19 @@ pub struct ErrorEstimate {
     /// tighter, when the run used them.
     #[serde(default)]
     pub tolerances: f64,
+    /// Whether the merged part rests on levels seen converging (a merged
+    /// ladder's last three levels; `None` for runs that merged nothing).
+    /// `false`: the differences between levels did not shrink at order 0.5
+    /// or faster (or there were fewer than three levels), so `e` may sit on
+    /// the flat part of a step of its convergence and the merged part may
+    /// be low.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub merged_converging: Option<bool>,
+    /// The order of convergence the last three merged levels show,
+    /// `log2(|e(4h) - e(2h)| / |e(2h) - e(h)|)` (first order: 1), when
+    /// both differences are non-zero.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub merged_observed_order: Option<f64>,
     /// How the parts were obtained, in words.
     pub method: String,
 }

@@ -1,5 +1,5 @@
 //! Which boundaries a merged run's events fall on (a diagnostic for slow
-//! rods): `layer_events SCENE.json [PER_TRANSIT [PER_LONGEST [noleap]]]`.
+//! rods, or exact ones): `layer_events SCENE.json [PER_TRANSIT [PER_LONGEST [noleap]]]`.
 use impact_model::Scene;
 use impact_wave::{Resolution, StepKind, WaveConfig, WaveEngine};
 
@@ -10,10 +10,15 @@ fn main() {
     let rod = scene.validate().expect("a valid scene");
     let p = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(0.2);
     let l = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(4e-3);
+    // `PER_TRANSIT` 0: the exact resolution
     let config = WaveConfig {
-        resolution: Resolution::Merged {
-            per_transit: p,
-            per_longest: l,
+        resolution: if p > 0.0 {
+            Resolution::Merged {
+                per_transit: p,
+                per_longest: l,
+            }
+        } else {
+            Resolution::Exact
         },
         leap_quiet_layers: args.get(4).is_none_or(|s| s != "noleap"),
         ..WaveConfig::default()

@@ -5,7 +5,8 @@
 //! cargo run --release -p impact-wave --example level_probe -- SCENE.json P [P...]
 //!
 //! `P` is the lattice spacing in transits (at most 0.5); the spacing in the
-//! longest transit is `P / 50`, as the ladder pairs them.
+//! longest transit is `P / 50`, as the ladder pairs them, unless given as
+//! `P:L` (to vary the two apart).
 use impact_model::Scene;
 use impact_wave::{Resolution, WaveConfig, WaveEngine};
 
@@ -17,20 +18,25 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let scene: Scene = serde_json::from_str(&std::fs::read_to_string(path)?)?;
     let rod = scene.validate()?;
     for p in &args[2..] {
-        let p: f64 = p.parse()?;
+        let (p, l): (f64, f64) = match p.split_once(':') {
+            Some((p, l)) => (p.parse()?, l.parse()?),
+            None => (p.parse()?, p.parse::<f64>()? / 50.0),
+        };
         let config = WaveConfig {
             resolution: Resolution::Merged {
                 per_transit: p,
-                per_longest: p / 50.0,
+                per_longest: l,
             },
             max_events: u64::MAX / 4,
+            // NO_LEAPS=1: every boundary event through the loop
+            leap_quiet_layers: std::env::var_os("NO_LEAPS").is_none(),
             ..WaveConfig::default()
         };
         let start = std::time::Instant::now();
         let mut engine = WaveEngine::new(&rod, config)?;
         let finished = engine.run().map_or("stopped", |_| "finished");
         println!(
-            "p {p:.3e}: {finished}, e {:.10}, work {}, events {} ({} leapt), {:.2} s",
+            "p {p:.3e} l {l:.3e}: {finished}, e {:.10}, work {}, events {} ({} leapt), {:.2} s",
             engine.restitution(),
             engine.steps(),
             engine.events(),

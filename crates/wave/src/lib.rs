@@ -17,6 +17,7 @@
 #![warn(missing_docs)]
 
 mod config;
+mod convergence;
 mod engine;
 mod error;
 mod fields;

@@ -30,6 +30,7 @@
 //!   what double precision alone would have lost.
 
 use crate::config::{COARSEST, Precision, Resolution, WaveConfig};
+use crate::convergence::{LOOK_BACK, SLOWEST_ORDER, converging, observed_order, refinement_error};
 use crate::engine::{Decisions, Tracer, WaveEngine};
 use crate::error::WaveError;
 use crate::real::DoubleDouble;
@@ -143,6 +144,8 @@ pub fn solve_observed(
     };
     if let Some(check) = &merged {
         estimate.merged = check.bound;
+        estimate.merged_converging = Some(check.converging);
+        estimate.merged_observed_order = check.order;
         parts.push(check.method.clone());
     }
     let mut outcome = finished(fine.outcome(), &fine)?;
@@ -284,31 +287,11 @@ struct MergeCheck {
     per_transit: f64,
     per_longest: f64,
     bound: f64,
+    /// The last three levels' observed order (see [`observed_order`]).
+    order: Option<f64>,
+    /// Whether those levels look converging (see [`converging`]).
+    converging: bool,
     method: String,
-}
-
-/// How many coarser levels the reported one is set against: a merged `e`
-/// converges at first order on average but in steps (measured on a
-/// six-layer rod: the error stays put for two halvings, then falls eight
-/// times), so a level equal to the one twice as coarse says little alone.
-const LOOK_BACK: usize = 4;
-
-/// The refinement part of a merged bound from the values of `e` on
-/// lattices that halve (coarsest first): for first-order convergence,
-/// `|e(h) - e(2^j h)| / (2^j - 1)` estimates the error at `h` from each
-/// coarser level `j`; the largest of them over [`LOOK_BACK`] levels is
-/// taken, so that a plateau of the staircase cannot hide the next step.
-fn refinement_error(levels: &[f64]) -> f64 {
-    let Some((&fine, coarser)) = levels.split_last() else {
-        return 0.0;
-    };
-    coarser
-        .iter()
-        .rev()
-        .take(LOOK_BACK)
-        .zip(1..)
-        .map(|(&e, j)| (fine - e).abs() / (2f64.powi(j) - 1.0))
-        .fold(0.0, f64::max)
 }
 
 /// The coarsest spacing a ladder starts from: a fraction of each lane's
@@ -349,12 +332,24 @@ fn merged_at(config: &WaveConfig, p: f64, l: f64, max_events: u64) -> WaveConfig
 /// The bound of the reported level and how it was found.
 fn merge_check(levels: &[f64], perturbed: f64, p: f64, l: f64, used: u64) -> MergeCheck {
     let refined = refinement_error(levels);
+    let order = observed_order(levels);
+    let converging = converging(levels);
+    let seen = match (order, converging) {
+        (Some(o), true) => format!("; the last three levels converge at order {o:.2}"),
+        (None, true) => "; e stands still over the last levels".to_string(),
+        (Some(o), false) => format!(
+            "; the last three levels converge at order {o:.2}, below {SLOWEST_ORDER}: not yet seen converging, so the estimate may be low"
+        ),
+        (None, false) => "; no convergence is seen (fewer than three levels, or e moved after standing still): the estimate may be low".to_string(),
+    };
     MergeCheck {
         per_transit: p,
         per_longest: l,
         bound: 2.0 * refined.max(perturbed),
+        order,
+        converging,
         method: format!(
-            "merged: twice the larger of the refinement estimate ({refined:.1e}: the largest |e - e(2^j as coarse)| / (2^j - 1) over {} coarser lattices) and the difference from the bottom's modulus changed by 1e-12 ({perturbed:.1e}); lattice spacings {p:.3e} of each transit, {l:.1e} of the longest ({used} units of work in all: loop iterations, and the fronts and lattice cells of leaps)",
+            "merged: twice the larger of the refinement estimate ({refined:.1e}: the largest |e - e(2^j as coarse)| / (2^j - 1) over {} coarser lattices) and the difference from the bottom's modulus changed by 1e-12 ({perturbed:.1e}); lattice spacings {p:.3e} of each transit, {l:.1e} of the longest ({used} units of work in all: loop iterations, and the fronts and lattice cells of leaps){seen}",
             (levels.len() - 1).min(LOOK_BACK),
         ),
     }

@@ -367,19 +367,37 @@ fn forced_ladder() -> WaveConfig {
 
 /// `|e_ladder - e_exact|` and the two runs' bounds, and the arrivals the
 /// reported level's leaps took; `None` if the exact run needs too long.
-fn ladder_against_exact(rod: &Rod) -> Option<(f64, f64, u64)> {
+fn ladder_against_exact(rod: &Rod) -> Option<Compared> {
     let exact = exact_run(rod, 20 * EXACT_EVENTS, true)?;
     let solution = impact_wave::solve(rod, &forced_ladder()).expect("a ladder finishes");
     let merged = &solution.outcome;
-    let bound = merged.error_bound.unwrap() + exact.error_bound.unwrap();
-    let d = (merged.restitution - exact.restitution).abs();
-    Some((d, bound, solution.engine.arrivals_taken()))
+    let estimate = merged.error_estimate.as_ref().expect("an estimate");
+    Some(Compared {
+        off: (merged.restitution - exact.restitution).abs(),
+        bound: merged.error_bound.unwrap() + exact.error_bound.unwrap(),
+        taken: solution.engine.arrivals_taken(),
+        converging: estimate.merged_converging.expect("a merged ladder says"),
+        order: estimate.merged_observed_order,
+    })
+}
+
+/// A merged ladder set against the exact run.
+struct Compared {
+    /// `|e_ladder - e_exact|`.
+    off: f64,
+    /// The two runs' bounds added.
+    bound: f64,
+    /// Arrivals the reported level's leaps took.
+    taken: u64,
+    /// Whether the ladder saw first-order convergence.
+    converging: bool,
+    order: Option<f64>,
 }
 
 /// The seed of [`ladder_rods`] for the two tests below.
 const LADDER_SEED: u64 = 0x1add_e125_0000_0009;
 
-/// Rod 3 of that draw: [`a_merged_bound_can_sit_on_a_plateau`].
+/// Rod 3 of that draw: [`a_merged_bound_on_a_plateau_says_it_may_be_low`].
 const PLATEAU_ROD: usize = 3;
 
 /// Merged ladders whose leaps take arrivals and deposit their trains
@@ -389,38 +407,58 @@ const PLATEAU_ROD: usize = 3;
 /// without arrivals taken).
 #[test]
 fn ladders_taking_arrivals_hold_their_bound_of_the_exact_e() {
-    let (mut compared, mut took) = (0, 0);
+    let (mut compared, mut took, mut seen) = (0, 0, 0);
     for (k, rod) in ladder_rods(LADDER_SEED, 12).iter().enumerate() {
         if k == PLATEAU_ROD {
             continue;
         }
-        let Some((d, bound, taken)) = ladder_against_exact(rod) else {
+        let Some(c) = ladder_against_exact(rod) else {
             eprintln!("rod {k}: the exact run needs too many events");
             continue;
         };
-        eprintln!("rod {k}: |de| = {d:.1e} under a bound of {bound:.1e}, {taken} arrivals taken");
-        assert!(d <= bound, "rod {k}: |de| = {d:e} over the bound {bound:e}");
+        eprintln!(
+            "rod {k}: |de| = {:.1e} under a bound of {:.1e}, {} arrivals taken, order {:?}",
+            c.off, c.bound, c.taken, c.order
+        );
+        assert!(
+            c.off <= c.bound,
+            "rod {k}: |de| = {:e} over the bound {:e}",
+            c.off,
+            c.bound
+        );
         compared += 1;
-        took += usize::from(taken > 0);
+        took += usize::from(c.taken > 0);
+        seen += usize::from(c.converging);
     }
     assert!(
         compared >= 8 && took >= 4,
         "{compared} compared, {took} took arrivals"
     );
+    // the convergence check is no blanket warning: most ladders pass it
+    assert!(seen >= 8, "{seen} of {compared} ladders seen converging");
 }
 
-/// A known defect, kept failing in view (`cargo test -- --ignored`): the
-/// merged bound rests on how `e` changes between lattices, and on this
-/// five-layer rod (transits 0.6, 0.3, 0.02, 5e-4, 0.4) `e` sits on a
-/// plateau. The error is set by the slow lanes' lattice (a share of the
-/// longest transit): about `2.0e-6` over the first four levels, then
-/// `1.6e-6` and `0.85e-6`, while the levels differ by `1e-7` or less; the
-/// ladder stops at the third with a bound of `1.2e-6` against an error of
-/// `2.0e-6`. The same with arrivals never taken (the engine before them).
+/// The known limit of the merged estimate, said in the output: it rests
+/// on how `e` changes between lattices, and on this five-layer rod
+/// (transits 0.6, 0.3, 0.02, 5e-4, 0.4) `e` sits on a plateau. The error is
+/// about `2.0e-6` over the first four levels, then `1.6e-6` and `0.85e-6`,
+/// while the levels differ by `1e-7` or less; the ladder stops at the third
+/// with an estimate of `1.2e-6`. What must hold: the bound, or the outcome
+/// says that the levels were not seen converging at first order, so that
+/// the estimate may be low.
 #[test]
-#[ignore = "known defect: the merged bound misses a plateau (ARCHITECTURE.md)"]
-fn a_merged_bound_can_sit_on_a_plateau() {
+fn a_merged_bound_on_a_plateau_says_it_may_be_low() {
     let rod = &ladder_rods(LADDER_SEED, PLATEAU_ROD + 1)[PLATEAU_ROD];
-    let (d, bound, _) = ladder_against_exact(rod).expect("an exact run in reach");
-    assert!(d <= bound, "|de| = {d:e} over the bound {bound:e}");
+    let c = ladder_against_exact(rod).expect("an exact run in reach");
+    eprintln!(
+        "|de| = {:.1e}, bound {:.1e}, order {:?}",
+        c.off, c.bound, c.order
+    );
+    assert!(
+        c.off <= c.bound || !c.converging,
+        "|de| = {:e} over the bound {:e}, and the ladder claimed convergence at order {:?}",
+        c.off,
+        c.bound,
+        c.order
+    );
 }

@@ -1,0 +1,119 @@
+//! What a merged ladder's levels say about its finest one: the error
+//! estimate from how `e` changes as the lattice halves, and whether the
+//! levels are seen converging at all (an estimate taken on the flat part of
+//! a step of the convergence can be low).
+
+/// How many coarser levels the reported one is set against: a merged `e`
+/// converges at first order on average but in steps (measured on a
+/// six-layer rod: the error stays put for two halvings, then falls eight
+/// times), so a level equal to the one twice as coarse says little alone.
+pub(crate) const LOOK_BACK: usize = 4;
+
+/// The refinement part of a merged bound from the values of `e` on
+/// lattices that halve (coarsest first): for first-order convergence,
+/// `|e(h) - e(2^j h)| / (2^j - 1)` estimates the error at `h` from each
+/// coarser level `j`; the largest of them over [`LOOK_BACK`] levels is
+/// taken, so that a plateau of the staircase cannot hide the next step.
+pub(crate) fn refinement_error(levels: &[f64]) -> f64 {
+    let Some((&fine, coarser)) = levels.split_last() else {
+        return 0.0;
+    };
+    coarser
+        .iter()
+        .rev()
+        .take(LOOK_BACK)
+        .zip(1..)
+        .map(|(&e, j)| (fine - e).abs() / (2f64.powi(j) - 1.0))
+        .fold(0.0, f64::max)
+}
+
+/// The slowest observed order taken as convergence: a merged `e` converges
+/// at first order once the lattice is fine enough, but falls in steps
+/// before, and an estimate taken on a step's flat part is low (a plateau
+/// over four halvings on a five-layer rod: the levels differed by `1e-7`
+/// while the error stayed `2.0e-6`; its last three levels show the order
+/// `-0.6`). Faster than first order is no risk to the estimate: it looks
+/// back over four levels, and the fall behind it counts.
+pub(crate) const SLOWEST_ORDER: f64 = 0.5;
+
+/// `log2(|e(4h) - e(2h)| / |e(2h) - e(h)|)` over the last three levels
+/// (coarsest first): 1 for first-order convergence; `None` with fewer than
+/// three levels or a zero difference.
+pub(crate) fn observed_order(levels: &[f64]) -> Option<f64> {
+    let [.., coarse, middle, fine] = levels else {
+        return None;
+    };
+    let (before, last) = ((middle - coarse).abs(), (fine - middle).abs());
+    (before > 0.0 && last > 0.0).then(|| (before / last).log2())
+}
+
+/// Whether the last three levels look converging: their differences
+/// shrink at [`SLOWEST_ORDER`] or faster, or `e` no longer moves at all
+/// between them (within 64 ulps: nothing the lattice does reaches it).
+/// Fewer than three levels show nothing.
+pub(crate) fn converging(levels: &[f64]) -> bool {
+    let [.., coarse, middle, fine] = levels else {
+        return false;
+    };
+    let still = 64.0 * f64::EPSILON * fine.abs();
+    let (before, last) = ((middle - coarse).abs(), (fine - middle).abs());
+    match (before <= still, last <= still) {
+        (true, true) => true,
+        // it moved after standing still: a step has begun
+        (true, false) => false,
+        // it stopped after moving: the look-back holds the fall
+        (false, true) => true,
+        (false, false) => (before / last).log2() >= SLOWEST_ORDER,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Levels `e_exact + C h` on halving lattices, coarsest first.
+    fn first_order(n: usize) -> Vec<f64> {
+        (0..n).map(|k| 0.5 + 1e-3 / 2f64.powi(k as i32)).collect()
+    }
+
+    #[test]
+    fn first_order_levels_show_order_one_and_their_error() {
+        let levels = first_order(5);
+        let order = observed_order(&levels).unwrap();
+        assert!((order - 1.0).abs() < 1e-9, "{order}");
+        assert!(converging(&levels));
+        // the finest level's error is exactly 1e-3 / 16
+        let error = refinement_error(&levels);
+        assert!((error - 1e-3 / 16.0).abs() < 1e-15, "{error}");
+    }
+
+    #[test]
+    fn a_plateau_or_a_step_beginning_is_not_converging() {
+        // the five-layer rod's first three levels: errors -2.23e-6,
+        // -2.61e-6, -2.02e-6 (differences growing: order -0.6)
+        let plateau = [0.5 - 2.23e-6, 0.5 - 2.61e-6, 0.5 - 2.02e-6];
+        assert!(observed_order(&plateau).unwrap() < 0.0);
+        assert!(!converging(&plateau));
+        // standing still, then moving: a step has begun
+        let step = [0.5, 0.5, 0.5 + 1e-6];
+        assert_eq!(observed_order(&step), None);
+        assert!(!converging(&step));
+        // two levels show nothing
+        assert!(!converging(&[0.5, 0.5 + 1e-6]));
+    }
+
+    #[test]
+    fn a_fall_then_stillness_or_no_movement_at_all_is_converging() {
+        // moved, then stood still: the look-back carries the fall
+        let fell = [0.5 + 1e-4, 0.5, 0.5];
+        assert!(converging(&fell));
+        assert!(refinement_error(&fell) >= 0.999 * 1e-4 / 3.0);
+        // nothing the lattice does reaches e (within 64 ulps)
+        let still = [0.5, 0.5 + 2.0 * f64::EPSILON, 0.5];
+        assert!(converging(&still));
+        // faster than first order is no risk: the fall is looked back on
+        let fast = [0.5 + 1e-4, 0.5 + 1e-6, 0.5 + 1e-8];
+        assert!(converging(&fast));
+        assert!(refinement_error(&fast) >= 0.999 * (1e-4 - 1e-8) / 3.0);
+    }
+}
