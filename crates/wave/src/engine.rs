@@ -324,10 +324,13 @@ impl<R: Real> Tracer<R> {
             && scaled[n - 1].transit_time * crate::leap::LEAST_TRANSITS
                 < scaled[n - 2].transit_time;
         // An exact run leaps only when nothing is recorded: a recording
-        // shows every event.
-        let leaps =
+        // shows every event. A double-double run never does
+        // (`Real::LEAPS`), but lays its lanes out as the double run it
+        // checks does (a merged run's lattice lanes are its discretisation).
+        let may_leap =
             config.leap_quiet_layers && (merged || !(config.record.wall || config.record.fronts));
-        let fold = !(config.record.fronts || (leaps && fast_top));
+        let leaps = R::LEAPS && may_leap;
+        let fold = !(config.record.fronts || (may_leap && fast_top));
         let mut lanes: Vec<Lane<R>> = scaled
             .iter()
             .enumerate()

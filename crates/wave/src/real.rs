@@ -34,6 +34,12 @@ pub trait Real:
     /// A totally ordered image of the number, for the event queue
     /// (`ordered-float` over its double parts).
     type Key: Ord + Copy + Debug;
+    /// Whether a run in this arithmetic may leap quiet layers (`leap.rs`):
+    /// the leaps' geometric sums go through `ln` and `exp_m1`, which
+    /// `twofloat` computes to about `1e-18` only, so a double-double run
+    /// that leapt would lose the digits it is run for (the hard corner's
+    /// `e` moved by `2.3e-15` against the loop in double-double).
+    const LEAPS: bool;
     /// To the nearest double.
     fn to_f64(self) -> f64;
     /// The number's key: keys order as the numbers do.
@@ -97,6 +103,7 @@ pub trait Real:
 const EXACT_INTEGERS: f64 = 4_503_599_627_370_496.0;
 
 impl Real for f64 {
+    const LEAPS: bool = true;
     type Key = OrderedFloat<f64>;
     #[inline(always)]
     fn key(self) -> Self::Key {
@@ -193,8 +200,25 @@ impl Real for f64 {
 /// reciprocals) are only as good as a double's: `(1/3) * 3 - 1` came out
 /// `-5.6e-17`. A rerun in that arithmetic would share double's error in
 /// every transit time and landing time, and say nothing about it.
-#[derive(Debug, Clone, Copy, Default, PartialEq, PartialOrd)]
+/// Ordered by its own [`PartialOrd`], not `twofloat`'s (see there).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct DoubleDouble(TwoFloat);
+
+/// The order of the numbers: by the leading double, then the trailing one
+/// (a normalised pair's trailing part is under half an ulp of its leading
+/// one, so this is the order of their sums). `twofloat` 0.8.4 ranks any
+/// pair it deems invalid, an infinite one among them, above every valid
+/// one and equal to every other: `0.5 < -inf` held, and `-inf == inf`. (A
+/// double-double run then never passed the `t >= -inf` that lets a layer
+/// leap; it still does not, now by [`Real::LEAPS`].)
+impl PartialOrd for DoubleDouble {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        match self.hi().partial_cmp(&other.hi())? {
+            std::cmp::Ordering::Equal => self.lo().partial_cmp(&other.lo()),
+            unequal => Some(unequal),
+        }
+    }
+}
 
 impl DoubleDouble {
     /// The leading double: the number rounded to double precision.
@@ -269,6 +293,7 @@ impl Arithmetic for DoubleDouble {
 }
 
 impl Real for DoubleDouble {
+    const LEAPS: bool = false;
     /// A normalised double-double orders as its (high, low) parts do.
     type Key = (OrderedFloat<f64>, OrderedFloat<f64>);
     fn key(self) -> Self::Key {
@@ -379,6 +404,33 @@ mod tests {
         let b = D::of(1.0) + D::of(2e-20);
         assert!(a.key() < b.key());
         assert_eq!(D::from_key(b.key()), b);
+    }
+
+    /// Double-doubles order as the numbers they stand for, infinities
+    /// included (`twofloat`'s own order put `0.5` below `-inf`, and a
+    /// double-double run never leapt).
+    #[test]
+    fn double_doubles_order_as_numbers_infinities_included() {
+        type D = DoubleDouble;
+        let ladder = [
+            D::neg_infinity(),
+            D::of(-1e300),
+            D::of(-1.0),
+            D::of(0.0),
+            D::of(1.0),
+            D::of(1.0) + D::of(1e-25),
+            D::of(1.0) + D::of(2e-25),
+            D::of(1.0 + f64::EPSILON),
+            D::of(1e300),
+            -D::neg_infinity(),
+        ];
+        for (i, a) in ladder.iter().enumerate() {
+            for (j, b) in ladder.iter().enumerate() {
+                assert_eq!(a.partial_cmp(b), i.partial_cmp(&j), "{a:?} against {b:?}");
+            }
+        }
+        let nan = D::of(f64::NAN);
+        assert_eq!(nan.partial_cmp(&D::of(1.0)), None);
     }
 
     /// Quotients of double-doubles against exact rational arithmetic:
