@@ -115,7 +115,8 @@ pub fn summary(title: &str, o: &Timed<Outcome>) -> String {
         if est.merged_converging == Some(false) {
             parts.push(match est.merged_observed_order {
                 Some(order) => format!(
-                    "the merged levels converge at order {order:.1}, not yet seen converging: the merged estimate may be low"
+                    "the merged levels show order {order:.1}, below {}: the merged estimate may be low",
+                    impact_wave::SLOWEST_ORDER
                 ),
                 None => "the merged levels are not yet seen converging: the merged estimate may be low".to_string(),
             });

@@ -34,7 +34,7 @@ pub(crate) fn refinement_error(levels: &[f64]) -> f64 {
 /// while the error stayed `2.0e-6`; its last three levels show the order
 /// `-0.6`). Faster than first order is no risk to the estimate: it looks
 /// back over four levels, and the fall behind it counts.
-pub(crate) const SLOWEST_ORDER: f64 = 0.5;
+pub const SLOWEST_ORDER: f64 = 0.5;
 
 /// `log2(|e(4h) - e(2h)| / |e(2h) - e(h)|)` over the last three levels
 /// (coarsest first): 1 for first-order convergence; `None` with fewer than
