@@ -391,6 +391,7 @@ struct Compared {
     taken: u64,
     /// Whether the ladder saw first-order convergence.
     converging: bool,
+    /// The order of convergence its last three levels show.
     order: Option<f64>,
 }
 
