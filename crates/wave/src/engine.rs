@@ -9,7 +9,6 @@
 use crate::config::{LeapArrivals, Record, Resolution, StopRule, WaveConfig};
 use crate::error::WaveError;
 use crate::lane::{Direction, Lane, MergeRule, Pushed};
-use crate::leap::Train;
 use crate::queue::{EventInPast, EventKey, EventQueue};
 use crate::real::Real;
 use crate::record::{FrontRecord, Recording, WallSample};
@@ -220,7 +219,7 @@ pub struct Tracer<R: Real> {
     pub(crate) deposits: Vec<(usize, R, R)>,
     /// Trains an exact leap sends into its neighbours' lanes, spawned
     /// front by front in birth order when the leap ends.
-    pub(crate) exact_trains: Vec<(usize, Train<R>)>,
+    pub(crate) exact_trains: crate::leap::ExactTrains<R>,
     /// Recent geometric sums `(q, n) -> (s0, s1, s2)`.
     pub(crate) sums_memo: Vec<(R, u64, (R, R, R))>,
     /// A leap's buffers, kept for the next.
@@ -402,7 +401,7 @@ impl<R: Real> Tracer<R> {
             leap_after: crate::leap::first_leaps(&layers, fold),
             leap_retry: vec![0; n],
             deposits: Vec::new(),
-            exact_trains: Vec::new(),
+            exact_trains: Default::default(),
             sums_memo: Vec::new(),
             scratch: Default::default(),
             ln_memo: None,

@@ -35,20 +35,37 @@ use crate::geometric::sums;
 use crate::lane::{Direction, Front, Lane};
 use crate::queue::EventKey;
 use crate::real::Real;
+use crate::runs::sort_stably;
 use crate::wall::ContactState;
-use std::cmp::Ordering;
 
 mod arrivals;
 mod crossing;
+mod exact;
 mod together;
 mod trains;
 mod wall;
 
 use arrivals::Taken;
-use crossing::{count_before, pow};
+use crossing::{count_before, pow, pow_small};
+pub(crate) use exact::ExactTrains;
+
+/// A layer leaps only where its neighbours' round trips are at least this
+/// many of its transits (what a leap sends them would come back too
+/// soon), and a top this much faster than the layer under it is not
+/// folded in a merged run (see `Tracer::new`).
+pub(crate) const LEAST_TRANSITS: f64 = 8.0;
 
 /// Leaps shorter than this many transits of the layer are not worth it.
-pub(crate) const LEAST_TRANSITS: f64 = 8.0;
+/// A leap costs a few loop events a front (its phases, what it sends out,
+/// the rebuilt lanes), the loop two a front a round trip. A chattering
+/// stiff base is in contact for two round trips at a time: at eight
+/// transits no contact was leapt and the loop took them front by front,
+/// 80 % of the 20 hardest points' loop events (at one transit the tries
+/// cost more than they save; two and three were the best, callgrind).
+pub(crate) const SHORTEST_LEAP: f64 = 2.0;
+
+/// Up to how many round trips [`Tracer::life_within`] counts with a power.
+const SHORT_LIFE: u64 = 16;
 
 /// When each layer may first try to leap: never (infinity) where a
 /// neighbour's round trip is under [`LEAST_TRANSITS`] of the layer's own
@@ -125,6 +142,9 @@ pub(crate) struct LeapScratch<R> {
     /// Ringing trains into lattice lanes, deposited together
     /// (`together.rs`).
     ringing: Vec<(usize, Train<R>)>,
+    /// Room for sorting phases and fronts (`runs.rs`).
+    phases_run: Vec<Phase<R>>,
+    fronts_run: Vec<Front<R>>,
 }
 
 impl<R> Default for LeapScratch<R> {
@@ -135,6 +155,8 @@ impl<R> Default for LeapScratch<R> {
             down: Vec::new(),
             bottom_arrivals: Vec::new(),
             ringing: Vec::new(),
+            phases_run: Vec::new(),
+            fronts_run: Vec::new(),
         }
     }
 }
@@ -170,7 +192,10 @@ impl<R: Real> Tracer<R> {
         let has_above = i + 1 < n;
         let ti = self.lanes[up].transit;
         let period = ti + ti;
-        let least = R::of(LEAST_TRANSITS) * ti;
+        let least = R::of(SHORTEST_LEAP) * ti;
+        if i == 0 && self.wall_decides_now(t, least) {
+            return Ok(None);
+        }
         // the quiet window: until something arrives from outside, or the
         // run's own stops; what the leap itself sends into a neighbour
         // comes back after the neighbour's round trip at the earliest (a
@@ -261,6 +286,8 @@ impl<R: Real> Tracer<R> {
             down: fronts_down,
             bottom_arrivals,
             ringing,
+            phases_run,
+            fronts_run,
         } = scratch;
         self.phases(i, ti, ends, phases);
         let taken = if taking {
@@ -271,7 +298,7 @@ impl<R: Real> Tracer<R> {
         if phases.is_empty() && taken.events == 0 {
             return Ok(None);
         }
-        phases.sort_by(|a, b| a.tau.partial_cmp(&b.tau).unwrap_or(Ordering::Equal));
+        sort_stably(phases, phases_run, |p| p.tau);
         let q = ends.bottom * ends.top;
         if i == 0 {
             self.advance_wall(t);
@@ -322,11 +349,10 @@ impl<R: Real> Tracer<R> {
                 down_sum += p.amp;
             }
             // round trips: bottom arrivals k < nb, top arrivals k < nt
-            let life_down = self.life(p.amp, q, thr, 1);
-            let life_up = self.life(ends.bottom * p.amp, q, thr, 0);
-            let nb = count_before(p.tau, period, horizon)
-                .min(life_down)
-                .min(life_up + 1);
+            let within = count_before(p.tau, period, horizon);
+            let life_down = self.life_within(p.amp, q, thr, 1, within);
+            let life_up = self.life_within(ends.bottom * p.amp, q, thr, 0, within);
+            let nb = within.min(life_down).min(life_up + 1);
             if nb == 0 {
                 fronts_down.push(self.front(p.tau - ti, p.amp));
                 continue;
@@ -386,7 +412,7 @@ impl<R: Real> Tracer<R> {
         self.down_base[i] += down_sum;
         self.place_deposits()?;
         self.place_exact_trains()?;
-        self.rebuild(i, fronts_up, fronts_down)?;
+        self.rebuild(i, fronts_up, fronts_down, fronts_run)?;
         self.leaped += events;
         Ok(Some(events))
     }
@@ -440,6 +466,14 @@ impl<R: Real> Tracer<R> {
     /// Geometric sums, remembered within a leap: the fronts of a quiet
     /// layer mostly return the same number of times.
     fn sums_cached(&mut self, q: R, n: u64) -> (R, R, R) {
+        // one or two terms, as `sums` adds them (a leap over a short
+        // contact returns each front once or twice; the search cost more)
+        match n {
+            0 => return (R::zero(), R::zero(), R::zero()),
+            1 => return (R::one(), R::zero(), R::zero()),
+            2 => return (R::one() + q, q, q),
+            _ => {}
+        }
         if let Some(&(_, _, s)) = self.sums_memo.iter().find(|m| m.0 == q && m.1 == n) {
             return s;
         }
@@ -519,6 +553,29 @@ impl<R: Real> Tracer<R> {
         }
     }
 
+    /// [`Tracer::life`], but no more than `cap`: where the front is still
+    /// above the threshold after `cap - 1` round trips, a power says so
+    /// without the logarithms (a leap over a contact of two round trips,
+    /// the chatter of a stiff base, needs no more; its logarithms were a
+    /// fifth of such a leap's work). The same count: `life` itself counts
+    /// with these powers wherever its logarithms come near an integer.
+    #[inline]
+    pub(crate) fn life_within(&mut self, a: R, q: R, thr: R, from: u64, cap: u64) -> u64 {
+        // (`life` never counts fewer than `from`)
+        if cap <= from {
+            return cap;
+        }
+        let aq = q.abs();
+        if cap <= SHORT_LIFE
+            && aq > R::zero()
+            && aq < R::one()
+            && a.abs() * pow_small(aq, cap - 1) >= thr
+        {
+            return cap;
+        }
+        self.life(a, q, thr, from).min(cap)
+    }
+
     /// How many round trips a front of jump `a` lives (counted from `from`)
     /// before it falls under the drop threshold `thr`.
     fn life(&mut self, a: R, q: R, thr: R, from: u64) -> u64 {
@@ -573,11 +630,10 @@ impl<R: Real> Tracer<R> {
         i: usize,
         up: &mut [Front<R>],
         down: &mut [Front<R>],
+        run: &mut Vec<Front<R>>,
     ) -> Result<(), WaveError> {
-        let by_birth =
-            |a: &Front<R>, b: &Front<R>| a.born.partial_cmp(&b.born).unwrap_or(Ordering::Equal);
-        up.sort_by(by_birth);
-        down.sort_by(by_birth);
+        sort_stably(up, run, |f| f.born);
+        sort_stably(down, run, |f| f.born);
         let ui = Lane::<R>::index(i, Direction::Up);
         let di = Lane::<R>::index(i, Direction::Down);
         let mut spare = std::mem::take(&mut self.spare_fronts);

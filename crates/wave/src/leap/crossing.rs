@@ -147,10 +147,26 @@ pub(super) fn pow<R: Real>(q: R, k: u64) -> R {
     }
 }
 
+/// [`pow`] for the first few powers without the call (the same products:
+/// `q^1 = q`, `q^2 = q q`).
+#[inline(always)]
+pub(super) fn pow_small<R: Real>(q: R, k: u64) -> R {
+    match k {
+        0 => R::one(),
+        1 => q,
+        2 => q * q,
+        _ => pow(q, k),
+    }
+}
+
 /// How many `k >= 0` have `start + k period < end`.
 pub(super) fn count_before<R: Real>(start: R, period: R, end: R) -> u64 {
     if start >= end {
         return 0;
+    }
+    // (the loop below ends here too: a short leap's common case)
+    if start + period >= end {
+        return 1;
     }
     let mut n = ((end - start) / period).ceil().to_f64().max(1.0) as u64;
     while n > 0 && start + R::of((n - 1) as f64) * period >= end {

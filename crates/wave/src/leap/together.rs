@@ -240,7 +240,7 @@ impl<R: Real> Tracer<R> {
             let together = t.c.abs() < keep_above
                 && qk.abs() >= R::of(1e-3)
                 && last(&t) + period >= latest
-                && self.life(t.c, q, thr, 0) >= t.count;
+                && self.life_within(t.c, q, thr, 0, t.count) >= t.count;
             if !together {
                 self.emit(lane, t)?;
                 continue;

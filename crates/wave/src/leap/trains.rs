@@ -10,8 +10,8 @@ use crate::error::WaveError;
 use crate::geometric::sums;
 use crate::lane::{Direction, Lane, MergeRule, Ring, Trains, foresee};
 use crate::real::Real;
+use crate::runs::sort_stably;
 use crate::window::Window;
-use std::cmp::Ordering;
 
 /// Fronts going into one exact lane at the end of a leap, as
 /// [`Tracer::spawn_front`] would take them: what it drops and the merges
@@ -56,6 +56,13 @@ impl<R: Real> Spawning<'_, R> {
     /// (a sum of geometric series, not front by front: the base, which
     /// only the fields read, moves by the rounding of that sum).
     fn keep_waiting(&mut self, rings: &[(usize, Train<R>)]) -> bool {
+        // (the short trains' test below, before foreseeing: the lane can
+        // hold no more fronts than the trains give, and a leap over a
+        // chatter's contact gives one or two a train)
+        let given: u64 = rings.iter().map(|t| t.1.count).sum();
+        if given < SPAWNED_BELOW * rings.len() as u64 {
+            return false;
+        }
         let rings: Vec<Ring<R>> = rings
             .iter()
             .map(|&(_, t)| Ring {
@@ -151,7 +158,7 @@ impl<R: Real> Tracer<R> {
         let alive = if train.q == R::zero() {
             u64::from(train.c.abs() >= thr).min(train.count)
         } else {
-            self.life(train.c, train.q, thr, 0).min(train.count)
+            self.life_within(train.c, train.q, thr, 0, train.count)
         };
         if alive < train.count {
             // the tail under the threshold, dropped as the loop would drop
@@ -177,13 +184,13 @@ impl<R: Real> Tracer<R> {
         } = self.lanes[lane].rule
         else {
             self.deposits = deposits;
-            self.exact_trains.push((
+            self.exact_trains.push(
                 lane,
                 Train {
                     count: alive,
                     ..train
                 },
-            ));
+            );
             return Ok(());
         };
         let mut k = 0;
@@ -268,19 +275,9 @@ impl<R: Real> Tracer<R> {
         if self.exact_trains.is_empty() {
             return Ok(());
         }
-        let mut trains = std::mem::take(&mut self.exact_trains);
-        trains.sort_by(|a, b| {
-            (a.0, a.1.count > 1)
-                .cmp(&(b.0, b.1.count > 1))
-                .then(a.1.start.partial_cmp(&b.1.start).unwrap_or(Ordering::Equal))
-        });
-        let mut rest = &trains[..];
-        while let Some(&(lane, _)) = rest.first() {
-            let len = rest.iter().take_while(|t| t.0 == lane).count();
-            let (group, next) = rest.split_at(len);
-            rest = next;
-            let singles = group.partition_point(|t| t.1.count <= 1);
-            let (singles, rings) = group.split_at(singles);
+        let mut gathered = std::mem::take(&mut self.exact_trains);
+        for k in 0..gathered.by_lane() {
+            let (lane, singles, rings) = gathered.in_order(k);
             let births = singles.len() as u64 + rings.iter().map(|t| t.1.count).sum::<u64>();
             self.leap_work += births;
             let layer = self.lanes[lane].layer;
@@ -314,7 +311,8 @@ impl<R: Real> Tracer<R> {
                     all.push((born, jump));
                     true
                 });
-                all.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap_or(Ordering::Equal));
+                // (singles, then each round: a few sorted runs)
+                sort_stably(&mut all, &mut Vec::new(), |b| b.0);
                 for (born, jump) in all {
                     into.put(born, jump);
                 }
@@ -339,8 +337,8 @@ impl<R: Real> Tracer<R> {
             }
             self.reschedule_layer(layer)?;
         }
-        trains.clear();
-        self.exact_trains = trains;
+        gathered.clear();
+        self.exact_trains = gathered;
         Ok(())
     }
 }

@@ -5,10 +5,66 @@
 use super::Phase;
 use super::crossing::{count_before, first_crossing, first_nonpositive};
 use crate::engine::{NEAR_GRAZING, Tracer};
+use crate::lane::{Direction, Lane};
+use crate::queue::EventKey;
 use crate::real::Real;
 use crate::wall::ContactState;
 
 impl<R: Real> Tracer<R> {
+    /// How close to tensile a contact strain may come inside a leap: an
+    /// exact run's loop takes the near-grazing decisions.
+    fn leap_threshold(&self) -> R {
+        if self.merged {
+            self.grazing_strain
+        } else {
+            let scale = self.impact_speed / self.layers[0].wave_speed;
+            self.grazing_strain.max(R::of(NEAR_GRAZING) * scale)
+        }
+    }
+
+    /// Whether the wall decides something now, or lands the bottom within
+    /// `least`, seen without the phases: then a leap of the bottom layer
+    /// cannot start, and trying costs a pass over its fronts. In a
+    /// chatter (a stiff base under a soft top, contacts of two round
+    /// trips) every separation was such a try, and the pause after a
+    /// failed try (`leap_retry`) then kept the loop from leaping the next
+    /// contact for a round trip. True only where [`Tracer::wall_stop`]
+    /// would stop the leap at once; a false `false` costs a try.
+    pub(super) fn wall_decides_now(&mut self, t: R, least: R) -> bool {
+        let two = R::of(2.0);
+        // the jump reaching the wall now, if a front does
+        let down = &self.lanes[Lane::<R>::index(0, Direction::Down)];
+        let arriving = match down.head_arrival() {
+            Some(at) if at == t => down.fronts().next().map(|f| down.delivered(f.jump)),
+            _ => None,
+        };
+        match self.contact {
+            ContactState::InContact { strain } => {
+                arriving.is_some_and(|jump| strain + two * jump >= -self.leap_threshold())
+            }
+            ContactState::Free {
+                height,
+                velocity,
+                at,
+            } => {
+                if let Some(land) = self.queue.time_of(EventKey::Reconnection)
+                    && land - t < least
+                {
+                    self.leap_after[0] = land;
+                    return true;
+                }
+                // a front turning the bottom down so near the wall that it
+                // lands within `least`
+                let Some(jump) = arriving else {
+                    return false;
+                };
+                let c0 = self.layers[0].wave_speed;
+                let v = velocity + two * c0 * jump;
+                height + velocity * (t - at) + v * least <= R::zero()
+            }
+        }
+    }
+
     /// The earliest time the wall could decide something: in contact, the
     /// first return making the wall strain grazing or tensile; in flight,
     /// the earliest the bottom could come down, from its lowest velocity.
@@ -23,13 +79,7 @@ impl<R: Real> Tracer<R> {
                 let c0 = strain + two * limit;
                 let mut prefix = R::zero();
                 let mut stop = horizon;
-                // an exact run's loop takes the near-grazing decisions
-                let threshold = if self.merged {
-                    self.grazing_strain
-                } else {
-                    let scale = self.impact_speed / self.layers[0].wave_speed;
-                    self.grazing_strain.max(R::of(NEAR_GRAZING) * scale)
-                };
+                let threshold = self.leap_threshold();
                 // The first two returns of every phase by hand, as
                 // `first_crossing` evaluates them (`C0 + C_p q^k`): in a
                 // chatter the next decision comes within them, and a try
