@@ -180,7 +180,11 @@ impl<R: Real> Tracer<R> {
     /// Strain and velocity at height `y` (scene units) of the undeformed rod,
     /// now. A front sitting exactly at `y` is not counted: the sample is taken
     /// on the side the front came from, so at a layer's end it is the state
-    /// after the event that just happened there.
+    /// after the event that just happened there. After a leap
+    /// ([`crate::StepKind::Leap`]) the leapt layer's fronts already stand
+    /// where the leap ends, later than now: sample a run event by event
+    /// (`leap_quiet_layers` off, or fronts recorded) for the field at every
+    /// event.
     pub fn field_at(&self, y: f64) -> FieldSample {
         let y = R::of(y / self.units.length);
         let last = self.layers.len() - 1;

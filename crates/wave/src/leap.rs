@@ -41,12 +41,13 @@ use crate::wall::ContactState;
 mod arrivals;
 mod crossing;
 mod exact;
+mod life;
 mod together;
 mod trains;
 mod wall;
 
 use arrivals::Taken;
-use crossing::{count_before, pow, pow_small};
+use crossing::{count_before, pow};
 pub(crate) use exact::ExactTrains;
 
 /// A layer leaps only where its neighbours' round trips are at least this
@@ -55,17 +56,17 @@ pub(crate) use exact::ExactTrains;
 /// folded in a merged run (see `Tracer::new`).
 pub(crate) const LEAST_TRANSITS: f64 = 8.0;
 
-/// Leaps shorter than this many transits of the layer are not worth it.
-/// A leap costs a few loop events a front (its phases, what it sends out,
-/// the rebuilt lanes), the loop two a front a round trip. A chattering
-/// stiff base is in contact for two round trips at a time: at eight
-/// transits no contact was leapt and the loop took them front by front,
-/// 80 % of the 20 hardest points' loop events (at one transit the tries
-/// cost more than they save; two and three were the best, callgrind).
+/// An exact run's leaps shorter than this many transits of the layer are
+/// not worth it. A leap costs a few loop events a front (its phases, what
+/// it sends out, the rebuilt lanes), the loop two a front a round trip. A
+/// chattering stiff base is in contact for two round trips at a time: at
+/// eight transits no contact was leapt and the loop took them front by
+/// front, 80 % of the 20 hardest points' loop events (at one transit the
+/// tries cost more than they save; two and three were the best,
+/// callgrind). A merged run's leaps keep [`LEAST_TRANSITS`]: its leaps
+/// deposit on lattices, and leaping more often moved merged results
+/// within their bounds (layer survey rod 12: `e` by 1e-3, 14 s -> 26 s).
 pub(crate) const SHORTEST_LEAP: f64 = 2.0;
-
-/// Up to how many round trips [`Tracer::life_within`] counts with a power.
-const SHORT_LIFE: u64 = 16;
 
 /// When each layer may first try to leap: never (infinity) where a
 /// neighbour's round trip is under [`LEAST_TRANSITS`] of the layer's own
@@ -192,8 +193,12 @@ impl<R: Real> Tracer<R> {
         let has_above = i + 1 < n;
         let ti = self.lanes[up].transit;
         let period = ti + ti;
-        let least = R::of(SHORTEST_LEAP) * ti;
-        if i == 0 && self.wall_decides_now(t, least) {
+        let least = if self.merged {
+            R::of(LEAST_TRANSITS) * ti
+        } else {
+            R::of(SHORTEST_LEAP) * ti
+        };
+        if i == 0 && !self.merged && self.wall_decides_now(t, least) {
             return Ok(None);
         }
         // the quiet window: until something arrives from outside, or the
@@ -551,77 +556,6 @@ impl<R: Real> Tracer<R> {
             id: 0,
             kept: false,
         }
-    }
-
-    /// [`Tracer::life`], but no more than `cap`: where the front is still
-    /// above the threshold after `cap - 1` round trips, a power says so
-    /// without the logarithms (a leap over a contact of two round trips,
-    /// the chatter of a stiff base, needs no more; its logarithms were a
-    /// fifth of such a leap's work). The same count: `life` itself counts
-    /// with these powers wherever its logarithms come near an integer.
-    #[inline]
-    pub(crate) fn life_within(&mut self, a: R, q: R, thr: R, from: u64, cap: u64) -> u64 {
-        // (`life` never counts fewer than `from`)
-        if cap <= from {
-            return cap;
-        }
-        let aq = q.abs();
-        if cap <= SHORT_LIFE
-            && aq > R::zero()
-            && aq < R::one()
-            && a.abs() * pow_small(aq, cap - 1) >= thr
-        {
-            return cap;
-        }
-        self.life(a, q, thr, from).min(cap)
-    }
-
-    /// How many round trips a front of jump `a` lives (counted from `from`)
-    /// before it falls under the drop threshold `thr`.
-    fn life(&mut self, a: R, q: R, thr: R, from: u64) -> u64 {
-        if a.abs() < thr && from == 0 {
-            return 0;
-        }
-        let aq = q.abs();
-        if aq == R::zero() {
-            return from.max(1);
-        }
-        if aq >= R::one() {
-            return u64::MAX;
-        }
-        // a leap's trains share one ratio: its logarithm is kept
-        let ln_q = match self.ln_memo {
-            Some((q, ln)) if q == aq => ln,
-            _ => {
-                let ln = aq.ln();
-                self.ln_memo = Some((aq, ln));
-                ln
-            }
-        };
-        let k = ((thr / a.abs()).ln() / ln_q).to_f64();
-        if !k.is_finite() || k < 0.0 {
-            return from.max(if a.abs() >= thr { 1 } else { 0 });
-        }
-        // the first integer above k, unless k is so near an integer that
-        // the logarithms' rounding could decide: then count with powers
-        // (the common case needs none; they were half of a leap's time).
-        // (`f64::floor` and `round` are calls into libm on the baseline
-        // target; the distance to the nearest integer is `min(f, 1 - f)`
-        // of the fraction `f`, exactly `|k - round(k)|`.)
-        let whole = <f64 as Real>::floor(k);
-        let fraction = k - whole;
-        if fraction.min(1.0 - fraction) > 1e-9 * k.max(1.0) {
-            return (whole as u64 + 1).max(from);
-        }
-        let mut k = whole.max(0.0) as u64;
-        // the first k with |a| |q|^k < thr
-        while k > 0 && a.abs() * pow(aq, k - 1) < thr {
-            k -= 1;
-        }
-        while a.abs() * pow(aq, k) >= thr {
-            k += 1;
-        }
-        k.max(from)
     }
 
     /// Replaces layer `i`'s fronts after a leap: `(up, down)` fronts.

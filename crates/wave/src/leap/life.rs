@@ -1,0 +1,123 @@
+//! How long a ringing front lives: the round trips before its jump, `a
+//! q^k`, falls under the drop threshold, counted as the event loop would
+//! drop it.
+
+use super::crossing::{pow, pow_small};
+use crate::engine::Tracer;
+use crate::real::Real;
+
+/// Up to how many round trips [`Tracer::life_within`] counts with a power.
+const SHORT_LIFE: u64 = 16;
+
+impl<R: Real> Tracer<R> {
+    /// [`Tracer::life`], but no more than `cap`: where the front is still
+    /// above the threshold after `cap - 1` round trips, a power says so
+    /// without the logarithms (a leap over a contact of two round trips,
+    /// the chatter of a stiff base, needs no more; its logarithms were a
+    /// fifth of such a leap's work). The same count: `life` itself counts
+    /// with these powers wherever its logarithms come near an integer.
+    #[inline]
+    pub(crate) fn life_within(&mut self, a: R, q: R, thr: R, from: u64, cap: u64) -> u64 {
+        // (`life` never counts fewer than `from`)
+        if cap <= from {
+            return cap;
+        }
+        let aq = q.abs();
+        if cap <= SHORT_LIFE
+            && aq > R::zero()
+            && aq < R::one()
+            && a.abs() * pow_small(aq, cap - 1) >= thr
+        {
+            return cap;
+        }
+        self.life(a, q, thr, from).min(cap)
+    }
+
+    /// How many round trips a front of jump `a` lives (counted from `from`)
+    /// before it falls under the drop threshold `thr`.
+    pub(super) fn life(&mut self, a: R, q: R, thr: R, from: u64) -> u64 {
+        if a.abs() < thr && from == 0 {
+            return 0;
+        }
+        let aq = q.abs();
+        if aq == R::zero() {
+            return from.max(1);
+        }
+        if aq >= R::one() {
+            return u64::MAX;
+        }
+        // a leap's trains share one ratio: its logarithm is kept
+        let ln_q = match self.ln_memo {
+            Some((q, ln)) if q == aq => ln,
+            _ => {
+                let ln = aq.ln();
+                self.ln_memo = Some((aq, ln));
+                ln
+            }
+        };
+        let k = ((thr / a.abs()).ln() / ln_q).to_f64();
+        if !k.is_finite() || k < 0.0 {
+            return from.max(if a.abs() >= thr { 1 } else { 0 });
+        }
+        // the first integer above k, unless k is so near an integer that
+        // the logarithms' rounding could decide: then count with powers
+        // (the common case needs none; they were half of a leap's time).
+        // (`f64::floor` and `round` are calls into libm on the baseline
+        // target; the distance to the nearest integer is `min(f, 1 - f)`
+        // of the fraction `f`, exactly `|k - round(k)|`.)
+        let whole = <f64 as Real>::floor(k);
+        let fraction = k - whole;
+        if fraction.min(1.0 - fraction) > 1e-9 * k.max(1.0) {
+            return (whole as u64 + 1).max(from);
+        }
+        let mut k = whole.max(0.0) as u64;
+        // the first k with |a| |q|^k < thr
+        while k > 0 && a.abs() * pow(aq, k - 1) < thr {
+            k -= 1;
+        }
+        while a.abs() * pow(aq, k) >= thr {
+            k += 1;
+        }
+        k.max(from)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::config::WaveConfig;
+    use crate::engine::WaveEngine;
+    use impact_model::Bilayer;
+
+    /// `life_within` is `life` capped, whatever the jump, ratio, threshold,
+    /// start and cap: jumps at the threshold times powers of the ratio (the
+    /// near-integer logarithms `life` counts with powers), ratios of both
+    /// signs and near one, caps on both sides of the life.
+    #[test]
+    fn a_capped_life_is_the_life_capped() {
+        let rod = Bilayer::new(0.5, 0.5).unwrap().scene().validate().unwrap();
+        let mut engine = WaveEngine::new(&rod, WaveConfig::default()).unwrap();
+        let thr = 1e-16;
+        let mut checked = 0;
+        for q in [-0.999, -0.93, -0.5, -1e-3, 0.0, 1e-3, 0.5, 0.93, 0.999, 1.0] {
+            for a in [0.0, 3e-17, 1e-16, 1e-15, 0.3, -0.7, 1.0] {
+                // and jumps that reach the threshold after exactly k trips
+                let exact: Vec<f64> = (1..12).map(|k| thr / f64::abs(q).powi(k)).collect();
+                for &a in [a].iter().chain(exact.iter()) {
+                    for from in [0, 1] {
+                        for cap in [0, 1, 2, 3, 5, 16, 17, 100] {
+                            let whole = engine.life(a, q, thr, from);
+                            let capped = engine.life_within(a, q, thr, from, cap);
+                            assert_eq!(
+                                capped,
+                                whole.min(cap),
+                                "a {a}, q {q}, from {from}, cap {cap}: life {whole}"
+                            );
+                            checked += 1;
+                        }
+                    }
+                }
+            }
+        }
+        assert!(checked > 5000, "{checked}");
+    }
+}
