@@ -463,3 +463,53 @@ fn a_merged_bound_on_a_plateau_says_it_may_be_low() {
         c.order
     );
 }
+
+/// The paper's stiff-base corner chatters: 47 landings, each contact
+/// lasting one or two of the base's round trips. An exact run leaps each
+/// contact of two round trips from its landing to its separation (leaps
+/// of two transits, `SHORTEST_LEAP`), leaving the loop the decisions and
+/// the flight after the last separation. Counted, not timed: a guard of
+/// what made the 20 hardest points of the grid faster (that the leaps
+/// change nothing but rounding is
+/// `exact_leaps_agree_with_the_event_loop_to_rounding`, this rod
+/// included).
+#[test]
+fn a_chattering_base_is_leapt_contact_by_contact() {
+    let rod = Bilayer::new(0.995, 0.005)
+        .unwrap()
+        .scene()
+        .validate()
+        .unwrap();
+    let config = WaveConfig {
+        resolution: Resolution::Exact,
+        ..WaveConfig::default()
+    };
+    let mut engine = WaveEngine::new(&rod, config).unwrap();
+    let (mut landings, mut leapt, mut loop_events) = (0, 0, 0);
+    let mut leaping = false;
+    loop {
+        let step = engine.step().unwrap();
+        match step.kind {
+            StepKind::Reconnected => {
+                landings += 1;
+                leaping = false;
+            }
+            StepKind::Leap { .. } => leaping = true,
+            StepKind::Wall {
+                separated: true, ..
+            } => {
+                leapt += u32::from(leaping && landings > 0);
+                leaping = false;
+            }
+            StepKind::Stopped(_) => break,
+            _ => loop_events += 1,
+        }
+    }
+    eprintln!("{landings} landings, {leapt} contacts leapt, {loop_events} loop events");
+    assert!(landings >= 40, "{landings} landings: no chatter to leap");
+    assert!(leapt >= 40, "only {leapt} of {landings} contacts leapt");
+    assert!(
+        loop_events < 2_000,
+        "{loop_events} loop events: the contacts went back to the loop"
+    );
+}
