@@ -28,8 +28,12 @@ impl<R: Real> Tracer<R> {
     /// chatter (a stiff base under a soft top, contacts of two round
     /// trips) every separation was such a try, and the pause after a
     /// failed try (`leap_retry`) then kept the loop from leaping the next
-    /// contact for a round trip. True only where [`Tracer::wall_stop`]
-    /// would stop the leap at once; a false `false` costs a try.
+    /// contact for a round trip. In contact it is true exactly where
+    /// [`Tracer::wall_stop`]'s first return would stop the leap at once;
+    /// in flight it also answers true for a bottom turned down so near the
+    /// wall that it lands within `least`, a bound, not the closed form. A
+    /// wrong answer either way costs speed only: a try that fails, or a
+    /// leap left to the loop, which takes the same events one by one.
     pub(super) fn wall_decides_now(&mut self, t: R, least: R) -> bool {
         let two = R::of(2.0);
         // the jump reaching the wall now, if a front does
