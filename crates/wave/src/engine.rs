@@ -330,6 +330,7 @@ impl<R: Real> Tracer<R> {
             config.leap_quiet_layers && (merged || !(config.record.wall || config.record.fronts));
         let leaps = R::LEAPS && may_leap;
         let fold = !(config.record.fronts || (may_leap && fast_top));
+        let mut room = crate::room::take::<R>();
         let mut lanes: Vec<Lane<R>> = scaled
             .iter()
             .enumerate()
@@ -339,6 +340,12 @@ impl<R: Real> Tracer<R> {
                     .map(|d| Lane::new(i, d, transit, rule(l.transit_time, l.wave_speed)))
             })
             .collect();
+        for lane in &mut lanes {
+            if let Some(kept) = room.lanes.pop() {
+                *lane = std::mem::replace(lane, Lane::new(0, Direction::Up, R::zero(), lane.rule))
+                    .in_room(kept);
+            }
+        }
         let top_up = Lane::<R>::index(n - 1, Direction::Up);
         lanes[top_up].folded = fold;
         let from_above = (0..=n)
@@ -400,13 +407,13 @@ impl<R: Real> Tracer<R> {
             leap_work: 0,
             leap_after: crate::leap::first_leaps(&layers, fold),
             leap_retry: vec![0; n],
-            deposits: Vec::new(),
-            exact_trains: Default::default(),
+            deposits: room.deposits,
+            exact_trains: room.exact_trains,
             sums_memo: Vec::new(),
-            scratch: Default::default(),
+            scratch: room.scratch,
             ln_memo: None,
-            batch: Vec::new(),
-            spare_fronts: Vec::new(),
+            batch: room.batch,
+            spare_fronts: room.spare_fronts,
             next_id: 0,
             now: R::zero(),
             stopped: None,
@@ -1091,6 +1098,28 @@ impl<R: Real> Tracer<R> {
             self.step()?;
         }
         Ok(self.outcome())
+    }
+
+    /// Its growable buffers, emptied, for the thread's next tracer
+    /// ([`crate::room`]); the tracer is left without them.
+    pub(crate) fn empty_room(&mut self) -> crate::room::Room<R> {
+        use std::mem::take;
+        let mut deposits = take(&mut self.deposits);
+        deposits.clear();
+        let mut exact_trains = take(&mut self.exact_trains);
+        exact_trains.clear();
+        let mut batch = take(&mut self.batch);
+        batch.clear();
+        let mut spare_fronts = take(&mut self.spare_fronts);
+        spare_fronts.clear();
+        crate::room::Room {
+            lanes: self.lanes.iter_mut().map(Lane::take_room).collect(),
+            deposits,
+            exact_trains,
+            scratch: take(&mut self.scratch).emptied(),
+            batch,
+            spare_fronts,
+        }
     }
 
     /// The observables at the current time.

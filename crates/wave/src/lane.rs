@@ -17,9 +17,12 @@ use crate::window::Window;
 use serde::Serialize;
 use std::collections::VecDeque;
 
+mod fifo;
 mod given;
 mod lattice;
 mod trains;
+
+use fifo::Fifo;
 
 pub(crate) use given::{Given, foresee};
 pub(crate) use trains::{Ring, Trains};
@@ -79,7 +82,7 @@ pub struct Lane<R> {
     pub folded: bool,
     pub rule: MergeRule<R>,
     /// Private: every change goes through the methods that keep `head_at`.
-    fronts: VecDeque<Front<R>>,
+    fronts: Fifo<Front<R>>,
     /// A leap's trains waiting in an exact lane, in lane order among the
     /// deque's fronts (`trains.rs`); usually none.
     trains: VecDeque<Trains<R>>,
@@ -124,7 +127,7 @@ impl<R: Real> Lane<R> {
             transit,
             folded: false,
             rule,
-            fronts: VecDeque::new(),
+            fronts: Fifo::default(),
             trains: VecDeque::new(),
             newest_waiting: false,
             pushed: 0,
@@ -274,6 +277,22 @@ impl<R: Real> Lane<R> {
                 keep_at_most,
             } => self.push_on_lattice(born, jump, id, spacing, keep_above, keep_at_most),
         }
+    }
+
+    /// The lane, its fronts kept in `room` (an empty deque another run
+    /// grew, [`crate::room`]).
+    pub(crate) fn in_room(mut self, room: Vec<Front<R>>) -> Self {
+        debug_assert!(self.fronts.is_empty());
+        self.fronts = Fifo::in_room(room);
+        self
+    }
+
+    /// The room of the lane's fronts, emptied, for another run; the lane
+    /// is left empty.
+    pub(crate) fn take_room(&mut self) -> Vec<Front<R>> {
+        self.trains.clear();
+        self.head_at = None;
+        std::mem::take(&mut self.fronts).into_room()
     }
 
     /// Makes room for `more` fronts (a leap's trains, pushed at once).

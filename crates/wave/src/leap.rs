@@ -47,7 +47,7 @@ mod trains;
 mod wall;
 
 use arrivals::Taken;
-use crossing::{count_before, pow};
+use crossing::{count_before, pow_small};
 pub(crate) use exact::ExactTrains;
 
 /// A layer leaps only where its neighbours' round trips are at least this
@@ -146,6 +146,32 @@ pub(crate) struct LeapScratch<R> {
     /// Room for sorting phases and fronts (`runs.rs`).
     phases_run: Vec<Phase<R>>,
     fronts_run: Vec<Front<R>>,
+}
+
+impl<R> LeapScratch<R> {
+    /// Emptied, its room kept ([`crate::room`]).
+    pub(crate) fn emptied(mut self) -> Self {
+        self.phases.clear();
+        self.up.clear();
+        self.down.clear();
+        self.bottom_arrivals.clear();
+        self.ringing.clear();
+        self.phases_run.clear();
+        self.fronts_run.clear();
+        self
+    }
+
+    /// The bytes its room holds.
+    pub(crate) fn bytes(&self) -> usize {
+        use crate::room::vec_bytes;
+        vec_bytes(&self.phases)
+            + vec_bytes(&self.up)
+            + vec_bytes(&self.down)
+            + vec_bytes(&self.bottom_arrivals)
+            + vec_bytes(&self.ringing)
+            + vec_bytes(&self.phases_run)
+            + vec_bytes(&self.fronts_run)
+    }
 }
 
 impl<R> Default for LeapScratch<R> {
@@ -392,7 +418,7 @@ impl<R: Real> Tracer<R> {
             }
             // where the front is when the leap ends
             let last = p.tau + R::of((nb - 1) as f64) * period;
-            let arriving = p.amp * pow(q, nb - 1);
+            let arriving = p.amp * pow_small(q, nb - 1);
             let going_up = ends.bottom * arriving;
             if nt == nb {
                 let back = q * arriving;
@@ -470,15 +496,20 @@ impl<R: Real> Tracer<R> {
 
     /// Geometric sums, remembered within a leap: the fronts of a quiet
     /// layer mostly return the same number of times.
+    #[inline(always)]
     fn sums_cached(&mut self, q: R, n: u64) -> (R, R, R) {
         // one or two terms, as `sums` adds them (a leap over a short
         // contact returns each front once or twice; the search cost more)
         match n {
-            0 => return (R::zero(), R::zero(), R::zero()),
-            1 => return (R::one(), R::zero(), R::zero()),
-            2 => return (R::one() + q, q, q),
-            _ => {}
+            0 => (R::zero(), R::zero(), R::zero()),
+            1 => (R::one(), R::zero(), R::zero()),
+            2 => (R::one() + q, q, q),
+            _ => self.sums_remembered(q, n),
         }
+    }
+
+    /// [`Tracer::sums_cached`] of three terms or more.
+    fn sums_remembered(&mut self, q: R, n: u64) -> (R, R, R) {
         if let Some(&(_, _, s)) = self.sums_memo.iter().find(|m| m.0 == q && m.1 == n) {
             return s;
         }

@@ -27,6 +27,7 @@ mod leap;
 pub mod queue;
 mod real;
 mod record;
+mod room;
 mod runs;
 mod solve;
 mod wall;

@@ -7,7 +7,6 @@
 
 use super::{Front, Lane, Pushed};
 use crate::real::Real;
-use std::collections::VecDeque;
 
 impl<R: Real> Lane<R> {
     /// Appends the fronts of one lattice cell, merged onto its first and
@@ -175,7 +174,7 @@ impl<R: Real> Lane<R> {
         newer.extend(self.fronts.drain(older..));
         let merged = &mut self.fronts;
         let mut news = deposits.iter().copied().peekable();
-        let deposit = |merged: &mut VecDeque<Front<R>>, at: R, d: R| match merged.back_mut() {
+        let deposit = |merged: &mut super::Fifo<Front<R>>, at: R, d: R| match merged.back_mut() {
             Some(last) if last.born == at && !last.kept => last.jump += d,
             _ => merged.push_back(Front {
                 born: at,

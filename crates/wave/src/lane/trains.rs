@@ -175,7 +175,7 @@ impl<R: Real> Iterator for Trains<R> {
 /// A lane's fronts in order, its waiting trains expanded as they come.
 pub struct Fronts<'a, R> {
     /// The deque's alone, when no trains wait.
-    plain: Option<std::collections::vec_deque::Iter<'a, Front<R>>>,
+    plain: Option<std::slice::Iter<'a, Front<R>>>,
     lane: &'a Lane<R>,
     /// Next front of the deque, next trains, the trains being expanded.
     index: usize,

@@ -164,9 +164,13 @@ pub(super) fn count_before<R: Real>(start: R, period: R, end: R) -> u64 {
     if start >= end {
         return 0;
     }
-    // (the loop below ends here too: a short leap's common case)
+    // (the loops below end here too: a short leap's common cases, a
+    // front returning once or twice, without the division)
     if start + period >= end {
         return 1;
+    }
+    if start + R::of(2.0) * period >= end {
+        return 2;
     }
     let mut n = ((end - start) / period).ceil().to_f64().max(1.0) as u64;
     while n > 0 && start + R::of((n - 1) as f64) * period >= end {
@@ -176,4 +180,50 @@ pub(super) fn count_before<R: Real>(start: R, period: R, end: R) -> u64 {
         n += 1;
     }
     n
+}
+
+#[cfg(test)]
+mod tests {
+    use super::count_before;
+
+    /// The count by brute force: the first `n` whose `start + n period`, as
+    /// computed, is at or past `end` (the sum grows with `n`).
+    fn counted(start: f64, period: f64, end: f64) -> u64 {
+        let mut n = 0u64;
+        while start + (n as f64) * period < end {
+            n += 1;
+        }
+        n
+    }
+
+    /// `count_before` against the count by brute force, ends near 0 to 40
+    /// periods after the start, just before, at and after a multiple (the
+    /// fast paths for one and two returns, and the division, meet there),
+    /// starts from zero to far from it (where rounding of the sum decides).
+    #[test]
+    fn count_before_counts_the_lattice_times_before_the_end() {
+        let mut checked = 0;
+        for start in [0.0, 0.37, 1.0, 1e3, 123_456.789, 1e9] {
+            for period in [1e-3, 0.01, 0.1, 1.0 / 3.0, 2.0] {
+                for k in 0..40u32 {
+                    let at = start + f64::from(k) * period;
+                    for end in [
+                        at,
+                        at.next_down(),
+                        at.next_up(),
+                        at + 0.5 * period,
+                        start - period,
+                    ] {
+                        assert_eq!(
+                            count_before(start, period, end),
+                            counted(start, period, end),
+                            "start {start}, period {period}, end {end}"
+                        );
+                        checked += 1;
+                    }
+                }
+            }
+        }
+        assert_eq!(checked, 6 * 5 * 40 * 5);
+    }
 }

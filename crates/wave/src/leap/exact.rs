@@ -13,10 +13,11 @@
 
 use super::Train;
 use crate::real::Real;
+use crate::room::vec_bytes;
 use crate::runs::sort_stably;
 
 /// A train and its place among those gathered (ties keep that order).
-type Placed<R> = (u32, Train<R>);
+pub(crate) type Placed<R> = (u32, Train<R>);
 
 /// One lane's trains, by kind: singles (ratio zero), trains of one front
 /// (ratio not zero), ringing trains (two fronts or more).
@@ -34,9 +35,8 @@ pub(crate) struct ExactTrains<R> {
     /// Lanes in use (`lanes` beyond are kept for their room).
     used: usize,
     placed: u32,
-    singles: Vec<(usize, Train<R>)>,
-    rings: Vec<(usize, Train<R>)>,
-    merged: Vec<Placed<R>>,
+    singles: Vec<Placed<R>>,
+    rings: Vec<Placed<R>>,
     run: Vec<Placed<R>>,
 }
 
@@ -48,7 +48,6 @@ impl<R> Default for ExactTrains<R> {
             placed: 0,
             singles: Vec::new(),
             rings: Vec::new(),
-            merged: Vec::new(),
             run: Vec::new(),
         }
     }
@@ -60,6 +59,7 @@ impl<R: Real> ExactTrains<R> {
     }
 
     /// Gathers `train` for `lane`.
+    #[inline(always)]
     pub(crate) fn push(&mut self, lane: usize, train: Train<R>) {
         let slot = match self.lanes[..self.used].iter().position(|g| g.lane == lane) {
             Some(slot) => slot,
@@ -94,34 +94,38 @@ impl<R: Real> ExactTrains<R> {
 
     /// The `k`-th lane gathered (after [`ExactTrains::by_lane`]), its
     /// singles and its ringing trains, each in order (module doc).
-    #[allow(clippy::type_complexity)]
-    pub(crate) fn in_order(
-        &mut self,
-        k: usize,
-    ) -> (usize, &[(usize, Train<R>)], &[(usize, Train<R>)]) {
+    pub(crate) fn in_order(&mut self, k: usize) -> (usize, &[Placed<R>], &[Placed<R>]) {
         let g = &self.lanes[k];
-        let lane = g.lane;
         let by_start = |p: &Placed<R>| (p.1.start, p.0);
         let [single, one, ringing] = &g.kinds;
         self.singles.clear();
-        self.merged.clear();
-        self.merged.extend_from_slice(single);
-        self.merged.extend_from_slice(one);
-        sort_stably(&mut self.merged, &mut self.run, by_start);
-        self.singles
-            .extend(self.merged.iter().map(|&(_, t)| (lane, t)));
+        self.singles.extend_from_slice(single);
+        self.singles.extend_from_slice(one);
+        sort_stably(&mut self.singles, &mut self.run, by_start);
         self.rings.clear();
-        self.merged.clear();
-        self.merged.extend_from_slice(ringing);
-        sort_stably(&mut self.merged, &mut self.run, by_start);
-        self.rings
-            .extend(self.merged.iter().map(|&(_, t)| (lane, t)));
-        (lane, &self.singles, &self.rings)
+        self.rings.extend_from_slice(ringing);
+        sort_stably(&mut self.rings, &mut self.run, by_start);
+        (g.lane, &self.singles, &self.rings)
     }
 
     /// Empties it for the next leap (keeping the room).
     pub(crate) fn clear(&mut self) {
         self.used = 0;
         self.placed = 0;
+    }
+
+    /// The bytes its room holds ([`crate::room`]).
+    pub(crate) fn bytes(&self) -> usize {
+        let kinds: usize = self
+            .lanes
+            .iter()
+            .flat_map(|g| g.kinds.iter())
+            .map(vec_bytes)
+            .sum();
+        kinds
+            + vec_bytes(&self.lanes)
+            + vec_bytes(&self.singles)
+            + vec_bytes(&self.rings)
+            + vec_bytes(&self.run)
     }
 }

@@ -15,7 +15,7 @@ impl<R: Real> Tracer<R> {
     /// of survey rod 26's leaps. The same count: `life` itself counts with
     /// these powers wherever its logarithms come near an integer, and a
     /// power's rounding moves the count only where they do.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn life_within(&mut self, a: R, q: R, thr: R, from: u64, cap: u64) -> u64 {
         // (`life` never counts fewer than `from`)
         if cap <= from {

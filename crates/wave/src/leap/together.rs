@@ -159,6 +159,7 @@ impl<R: Real> Fenwick<R> {
 impl<R: Real> Tracer<R> {
     /// A ringing train into `lane`: held for depositing together if the
     /// lane is a lattice, else emitted now.
+    #[inline(always)]
     pub(super) fn emit_or_hold(
         &mut self,
         lane: usize,

@@ -5,6 +5,7 @@
 
 use super::Train;
 use super::crossing::{count_before, pow};
+use super::exact::Placed;
 use crate::engine::Tracer;
 use crate::error::WaveError;
 use crate::geometric::sums;
@@ -55,7 +56,7 @@ impl<R: Real> Spawning<'_, R> {
     /// otherwise. Their jumps are added to the layer's base in closed form
     /// (a sum of geometric series, not front by front: the base, which
     /// only the fields read, moves by the rounding of that sum).
-    fn keep_waiting(&mut self, rings: &[(usize, Train<R>)]) -> bool {
+    fn keep_waiting(&mut self, rings: &[Placed<R>]) -> bool {
         // (the short trains' test below, before foreseeing: the lane can
         // hold no more fronts than the trains give, and a leap over a
         // chatter's contact gives one or two a train)
@@ -104,7 +105,7 @@ const SPAWNED_BELOW: u64 = 64;
 /// The births of ringing trains round by round: round `k` of every train
 /// (sorted by start), then round `k + 1`; jumps by one product a round.
 /// Stops when `put` says no.
-fn rounds<R: Real>(rings: &[(usize, Train<R>)], mut put: impl FnMut(R, R) -> bool) {
+fn rounds<R: Real>(rings: &[Placed<R>], mut put: impl FnMut(R, R) -> bool) {
     let count = rings.iter().map(|t| t.1.count).max().unwrap_or(0);
     let mut jumps: Vec<R> = rings.iter().map(|t| t.1.c).collect();
     for k in 0..count {
@@ -120,11 +121,10 @@ fn rounds<R: Real>(rings: &[(usize, Train<R>)], mut put: impl FnMut(R, R) -> boo
     }
 }
 
-/// Whether the singles then [`rounds`] come in birth order: singles (sorted)
-/// before the first ring, and rings (sorted, one period) whose starts lie
-/// within a period by more than rounding, so that the rounded births of
-/// round `k` stay before those of round `k + 1`.
-fn in_rounds<R: Real>(singles: &[(usize, Train<R>)], rings: &[(usize, Train<R>)]) -> bool {
+/// Whether [`rounds`] gives the births in order: rings (sorted, one
+/// period) whose starts lie within a period by more than rounding, so that
+/// the rounded births of round `k` stay before those of round `k + 1`.
+fn rounds_in_order<R: Real>(rings: &[Placed<R>]) -> bool {
     let (Some(first), Some(last)) = (rings.first(), rings.last()) else {
         return true;
     };
@@ -134,26 +134,31 @@ fn in_rounds<R: Real>(singles: &[(usize, Train<R>)], rings: &[(usize, Train<R>)]
         .map(|t| t.1.start + R::of(t.1.count as f64) * period)
         .fold(R::zero(), |m, x| if x > m { x } else { m });
     let rounding = R::of(8.0 * f64::EPSILON) * (end.abs() + period);
-    singles.last().is_none_or(|s| s.1.start <= first.1.start)
-        && rings.iter().all(|t| t.1.period == period)
-        && last.1.start - first.1.start + rounding < period
+    rings.iter().all(|t| t.1.period == period) && last.1.start - first.1.start + rounding < period
+}
+
+/// Whether every single (sorted) is born before the first ring starts.
+fn singles_first<R: Real>(singles: &[Placed<R>], rings: &[Placed<R>]) -> bool {
+    singles
+        .last()
+        .zip(rings.first())
+        .is_none_or(|(s, r)| s.1.start <= r.1.start)
 }
 
 impl<R: Real> Tracer<R> {
     /// Deposits a train of fronts into `lane` as its merge rule would, one
     /// by one: the large ones kept (while the lane keeps any), the rest on
     /// its lattice with their jump and first moment, the tail under the
-    /// drop threshold dropped and accounted for.
+    /// drop threshold dropped and accounted for. Inlined: an exact leap
+    /// emits two trains a phase, and the call was a tenth of the 20
+    /// hardest points' work (callgrind).
+    #[inline(always)]
     pub(super) fn emit(&mut self, lane: usize, train: Train<R>) -> Result<(), WaveError> {
         if train.count == 0 || train.c == R::zero() {
             return Ok(());
         }
-        let mut deposits = std::mem::take(&mut self.deposits);
         let layer = self.lanes[lane].layer;
-        let dir = self.lanes[lane].direction;
         let thr = self.layers[layer].drop_strain();
-        let born = |k: u64| train.start + R::of(k as f64) * train.period;
-        let amp = |k: u64| train.c * pow(train.q, k);
         // alive while above the drop threshold
         let alive = if train.q == R::zero() {
             u64::from(train.c.abs() >= thr).min(train.count)
@@ -161,38 +166,40 @@ impl<R: Real> Tracer<R> {
             self.life_within(train.c, train.q, thr, 0, train.count)
         };
         if alive < train.count {
-            // the tail under the threshold, dropped as the loop would drop
-            // it one by one: counted, and its force accounted in closed form
-            let tail = train.count - alive;
-            let aq = train.q.abs();
-            let first = amp(alive).abs();
-            let (s0, s1, _) = sums(aq, tail);
-            let l = self.layers[layer];
-            let d = &mut self.drops;
-            d.truncation.dropped_fronts += tail;
-            d.truncation.dropped_velocity +=
-                (first * s0 * l.wave_speed / self.impact_speed).to_f64();
-            let force = (l.modulus * first * s0).to_f64();
-            d.dropped_force += force;
-            d.dropped_force_time +=
-                (l.modulus * first * (born(alive) * s0 + train.period * s1)).to_f64();
+            self.drop_tail(layer, train, alive);
         }
-        let MergeRule::Lattice {
-            spacing,
-            keep_above,
-            keep_at_most,
-        } = self.lanes[lane].rule
-        else {
-            self.deposits = deposits;
-            self.exact_trains.push(
-                lane,
-                Train {
-                    count: alive,
-                    ..train
-                },
-            );
-            return Ok(());
+        let train = Train {
+            count: alive,
+            ..train
         };
+        match self.lanes[lane].rule {
+            MergeRule::Simultaneous { .. } => {
+                self.exact_trains.push(lane, train);
+                Ok(())
+            }
+            MergeRule::Lattice {
+                spacing,
+                keep_above,
+                keep_at_most,
+            } => self.emit_on_lattice(lane, train, (spacing, keep_above, keep_at_most)),
+        }
+    }
+
+    /// [`Tracer::emit`] into a lattice lane of `(spacing, keep_above,
+    /// keep_at_most)` ([`MergeRule::Lattice`]), the train's living fronts
+    /// (the tail already dropped).
+    fn emit_on_lattice(
+        &mut self,
+        lane: usize,
+        train: Train<R>,
+        (spacing, keep_above, keep_at_most): (R, R, usize),
+    ) -> Result<(), WaveError> {
+        let alive = train.count;
+        let layer = self.lanes[lane].layer;
+        let mut deposits = std::mem::take(&mut self.deposits);
+        let dir = self.lanes[lane].direction;
+        let born = |k: u64| train.start + R::of(k as f64) * train.period;
+        let amp = |k: u64| train.c * pow(train.q, k);
         let mut k = 0;
         while k < alive && amp(k).abs() >= keep_above && self.lanes[lane].kept < keep_at_most {
             self.spawn_front(layer, dir, born(k), amp(k))?;
@@ -236,6 +243,25 @@ impl<R: Real> Tracer<R> {
         Ok(())
     }
 
+    /// The tail of `train` from front `alive` on, under the drop threshold
+    /// of `layer`: dropped as the loop would drop it one by one, counted,
+    /// and its force accounted in closed form.
+    #[cold]
+    fn drop_tail(&mut self, layer: usize, train: Train<R>, alive: u64) {
+        let tail = train.count - alive;
+        let aq = train.q.abs();
+        let first = (train.c * pow(train.q, alive)).abs();
+        let born = train.start + R::of(alive as f64) * train.period;
+        let (s0, s1, _) = sums(aq, tail);
+        let l = self.layers[layer];
+        let d = &mut self.drops;
+        d.truncation.dropped_fronts += tail;
+        d.truncation.dropped_velocity += (first * s0 * l.wave_speed / self.impact_speed).to_f64();
+        let force = (l.modulus * first * s0).to_f64();
+        d.dropped_force += force;
+        d.dropped_force_time += (l.modulus * first * (born * s0 + train.period * s1)).to_f64();
+    }
+
     /// Places the deposits gathered by `emit` into their lanes, one pass a
     /// lane, and puts the lanes' heads in the queue.
     pub(super) fn place_deposits(&mut self) -> Result<(), WaveError> {
@@ -265,12 +291,13 @@ impl<R: Real> Tracer<R> {
     /// Spawns the fronts of the trains an exact leap sent into its
     /// neighbours, lane by lane in birth order, as [`Tracer::spawn_front`]
     /// would one by one (under the drop threshold dropped, born together
-    /// merged): first the single fronts (from fronts that were going up
-    /// as the leap began), then the ringing trains round by round. That is
-    /// birth order when their starts lie within one period, as a leap's
-    /// do; otherwise (rounding at the edge) the births are sorted first.
-    /// The ringing trains are left to wait as trains where what spawning
-    /// them would do is foreseen ([`Spawning::keep_waiting`]).
+    /// merged): the single fronts (from fronts that were going up as the
+    /// leap began) and the ringing trains round by round, merged. Rounds
+    /// come in birth order when the trains' starts lie within one period,
+    /// as a leap's do; otherwise (rounding at the edge) the births are
+    /// sorted first. Where every single comes before the trains, the
+    /// ringing trains are left to wait as trains if what spawning them
+    /// would do is foreseen ([`Spawning::keep_waiting`]).
     pub(super) fn place_exact_trains(&mut self) -> Result<(), WaveError> {
         if self.exact_trains.is_empty() {
             return Ok(());
@@ -293,7 +320,21 @@ impl<R: Real> Tracer<R> {
                 dropped: Vec::new(),
                 merges: Vec::new(),
             };
-            if in_rounds(singles, rings) {
+            if !rounds_in_order(rings) {
+                // (rounding at the edge: births sorted, singles first on ties)
+                into.lane.reserve(births as usize);
+                let mut all: Vec<(R, R)> = Vec::with_capacity(births as usize);
+                all.extend(singles.iter().map(|t| (t.1.start, t.1.c)));
+                rounds(rings, |born, jump| {
+                    all.push((born, jump));
+                    true
+                });
+                // (singles, then each round: a few sorted runs)
+                sort_stably(&mut all, &mut Vec::new(), |b| b.0);
+                for (born, jump) in all {
+                    into.put(born, jump);
+                }
+            } else if singles_first(singles, rings) {
                 for t in singles {
                     into.put(t.1.start, t.1.c);
                 }
@@ -305,16 +346,21 @@ impl<R: Real> Tracer<R> {
                     });
                 }
             } else {
+                // a chatter's contact: fronts that were going up as it
+                // began still arrive while its trains ring; two sorted
+                // streams merged, singles first on ties (what a stable sort
+                // of singles then rounds gives)
                 into.lane.reserve(births as usize);
-                let mut all: Vec<(R, R)> = singles.iter().map(|t| (t.1.start, t.1.c)).collect();
+                let mut singles = singles.iter().peekable();
                 rounds(rings, |born, jump| {
-                    all.push((born, jump));
+                    while let Some(t) = singles.next_if(|t| t.1.start <= born) {
+                        into.put(t.1.start, t.1.c);
+                    }
+                    into.put(born, jump);
                     true
                 });
-                // (singles, then each round: a few sorted runs)
-                sort_stably(&mut all, &mut Vec::new(), |b| b.0);
-                for (born, jump) in all {
-                    into.put(born, jump);
+                for t in singles {
+                    into.put(t.1.start, t.1.c);
                 }
             }
             let Spawning {
