@@ -10,8 +10,12 @@
 # `fix nve` (velocity Verlet, whose positions are Beeman's: the wall impulse,
 # and so e, depends on positions only). First e must agree to 1e-9 on three
 # canonical bilayers at N = 200; then both run N = 10^4 and the script prints
-# ns per atom-step for each and the ratio. Not run by CI (minutes); runs on a
-# fresh machine (needs root for apt-get, python3, the Rust toolchain).
+# ns per atom-step for each and the ratio. The third peer is the plainest
+# C of the same chain, integrated as the paper writes Beeman's scheme
+# (`scripts/peers/naive_beeman.c`, `cc -O3 -march=native`): the baseline of
+# what a direct implementation gets; it too must agree on e to 1e-9. Not run
+# by CI (minutes); runs on a fresh machine (needs root for apt-get, python3,
+# a C compiler, the Rust toolchain).
 #
 #   scripts/bench-peers.sh                    # N = 10^4, 20000 LAMMPS steps
 #   N=100000 STEPS=2000 scripts/bench-peers.sh
@@ -24,6 +28,11 @@ if ! command -v lmp >/dev/null; then
   echo "== installing Debian's lammps"
   apt-get update -qq
   DEBIAN_FRONTEND=noninteractive apt-get install -y -qq lammps >/dev/null
+fi
+if ! command -v cc >/dev/null; then
+  echo "== installing Debian's gcc"
+  apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq gcc libc6-dev >/dev/null
 fi
 if [[ -z "${IMPACT:-}" ]]; then
   cargo build --release --locked --quiet
@@ -97,19 +106,23 @@ EOF
 
 field() { python3 -c "import json,sys; print(json.load(sys.stdin)['$1'])"; }
 
-echo "== e at N = 200: impact's chain against LAMMPS (must agree to 1e-9)"
+cc -O3 -march=native -o "$work/naive_beeman" scripts/peers/naive_beeman.c -lm
+
+echo "== e at N = 200: impact's chain against LAMMPS and the naive C (must agree to 1e-9)"
 for point in "0.5 0.5" "0.3 0.2" "0.8 0.05"; do
   set -- $point
   json=$("$IMPACT" run --x "$1" --alpha "$2" --engine chain --n 200 --json)
   e=$(field restitution <<<"$json")
   steps=$(field steps <<<"$json")
   read -r vcm _ < <(lammps "$1" "$2" 200 "$((steps + 100))")
-  python3 - "$1" "$2" "$e" "$vcm" <<'EOF'
+  read -r naive _ < <("$work/naive_beeman" "$1" "$2" 200 "$((steps + 100))")
+  python3 - "$1" "$2" "$e" "$vcm" "$naive" <<'EOF'
 import sys
-x, a, e, vcm = sys.argv[1], sys.argv[2], float(sys.argv[3]), float(sys.argv[4])
-d = abs(e - vcm)
-print(f"x = {x}, alpha = {a}: e impact {e:.12f}, LAMMPS {vcm:.12f}, |difference| {d:.1e}")
-sys.exit(0 if d <= 1e-9 else 1)
+x, a = sys.argv[1], sys.argv[2]
+e, vcm, naive = (float(v) for v in sys.argv[3:6])
+d, dn = abs(e - vcm), abs(e - naive)
+print(f"x = {x}, alpha = {a}: e impact {e:.12f}, LAMMPS {vcm:.12f} (|difference| {d:.1e}), naive C {naive:.12f} ({dn:.1e})")
+sys.exit(0 if max(d, dn) <= 1e-9 else 1)
 EOF
 done
 
@@ -118,10 +131,13 @@ json=$("$IMPACT" run --x 0.5 --alpha 0.5 --engine chain --n "$N" --json)
 impact_ns=$(python3 -c "import json,sys; j=json.loads(sys.argv[1]); print(1e9*j['elapsed_seconds']/(j['steps']*$N))" "$json")
 read -r _ loop < <(lammps 0.5 0.5 "$N" "$STEPS")
 lammps_ns=$(python3 -c "print(1e9*$loop/($STEPS*$N))")
-python3 - "$impact_ns" "$lammps_ns" <<EOF
+read -r _ naive_loop < <("$work/naive_beeman" 0.5 0.5 "$N" "$STEPS")
+naive_ns=$(python3 -c "print(1e9*$naive_loop/($STEPS*$N))")
+python3 - "$impact_ns" "$lammps_ns" "$naive_ns" <<EOF
 import sys
-i, l = float(sys.argv[1]), float(sys.argv[2])
+i, l, c = (float(v) for v in sys.argv[1:4])
 print(f"impact chain: {i:.2f} ns per mass-step (whole run, to escape)")
 print(f"LAMMPS:       {l:.2f} ns per atom-step ($STEPS steps)")
-print(f"LAMMPS / impact: {l / i:.1f}x")
+print(f"naive C:      {c:.2f} ns per mass-step ($STEPS steps)")
+print(f"LAMMPS / impact: {l / i:.1f}x; naive C / impact: {c / i:.1f}x")
 EOF
