@@ -340,11 +340,8 @@ impl<R: Real> Tracer<R> {
                     .map(|d| Lane::new(i, d, transit, rule(l.transit_time, l.wave_speed)))
             })
             .collect();
-        for lane in &mut lanes {
-            if let Some(kept) = room.lanes.pop() {
-                *lane = std::mem::replace(lane, Lane::new(0, Direction::Up, R::zero(), lane.rule))
-                    .in_room(kept);
-            }
+        for (lane, kept) in lanes.iter_mut().zip(room.lanes.drain(..)) {
+            lane.move_into(kept);
         }
         let top_up = Lane::<R>::index(n - 1, Direction::Up);
         lanes[top_up].folded = fold;

@@ -279,12 +279,11 @@ impl<R: Real> Lane<R> {
         }
     }
 
-    /// The lane, its fronts kept in `room` (an empty deque another run
-    /// grew, [`crate::room`]).
-    pub(crate) fn in_room(mut self, room: Vec<Front<R>>) -> Self {
+    /// Keeps the (empty) lane's fronts in `room`, a vector another run
+    /// grew ([`crate::room`]).
+    pub(crate) fn move_into(&mut self, room: Vec<Front<R>>) {
         debug_assert!(self.fronts.is_empty());
         self.fronts = Fifo::in_room(room);
-        self
     }
 
     /// The room of the lane's fronts, emptied, for another run; the lane

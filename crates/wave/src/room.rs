@@ -33,12 +33,7 @@ pub(crate) struct Room<R> {
 impl<R: Real> Room<R> {
     /// The bytes it holds.
     fn bytes(&self) -> usize {
-        let lanes: usize = self
-            .lanes
-            .iter()
-            .map(|l| l.capacity() * size_of::<Front<R>>())
-            .sum();
-        lanes
+        self.lanes.iter().map(vec_bytes).sum::<usize>()
             + vec_bytes(&self.deposits)
             + self.exact_trains.bytes()
             + self.scratch.bytes()
