@@ -220,7 +220,7 @@ pub struct Tracer<R: Real> {
     /// Trains an exact leap sends into its neighbours' lanes, spawned
     /// front by front in birth order when the leap ends.
     pub(crate) exact_trains: crate::leap::ExactTrains<R>,
-    /// Recent geometric sums `(q, n) -> (s0, s1, s2)`.
+    /// Geometric sums `(q, n) -> (s0, s1, s2)` in slots by `n` (`leap.rs`).
     pub(crate) sums_memo: Vec<(R, u64, (R, R, R))>,
     /// A leap's buffers, kept for the next.
     pub(crate) scratch: crate::leap::LeapScratch<R>,

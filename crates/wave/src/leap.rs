@@ -68,6 +68,14 @@ pub(crate) const LEAST_TRANSITS: f64 = 8.0;
 /// within their bounds (layer survey rod 12: `e` by 1e-3, 14 s -> 26 s).
 pub(crate) const SHORTEST_LEAP: f64 = 2.0;
 
+/// Geometric sums a tracer remembers, in slots by their number of terms.
+/// A merged run's leap that takes in its neighbours' arrivals counts its
+/// phases' returns over a dozen different numbers, phase after phase in
+/// the same order: the eight sums kept first in first out before missed
+/// every one of them (survey rod 26: 1.9 million sums, 4 % of its
+/// instructions).
+const SUMS_REMEMBERED: usize = 64;
+
 /// When each layer may first try to leap: never (infinity) where a
 /// neighbour's round trip is under [`LEAST_TRANSITS`] of the layer's own
 /// transits (what a leap sends it would come back too soon) or the layer is
@@ -508,16 +516,21 @@ impl<R: Real> Tracer<R> {
         }
     }
 
-    /// [`Tracer::sums_cached`] of three terms or more.
+    /// [`Tracer::sums_cached`] of three terms or more, remembered in
+    /// [`SUMS_REMEMBERED`] slots by the number of terms (a slot keeps the
+    /// last ratio and count that fell on it).
     fn sums_remembered(&mut self, q: R, n: u64) -> (R, R, R) {
-        if let Some(&(_, _, s)) = self.sums_memo.iter().find(|m| m.0 == q && m.1 == n) {
-            return s;
+        if self.sums_memo.is_empty() {
+            // (counts of zero terms are never stored: an empty slot)
+            self.sums_memo =
+                vec![(R::zero(), 0, (R::zero(), R::zero(), R::zero())); SUMS_REMEMBERED];
+        }
+        let slot = &mut self.sums_memo[(n % SUMS_REMEMBERED as u64) as usize];
+        if slot.1 == n && slot.0 == q {
+            return slot.2;
         }
         let s = sums(q, n);
-        if self.sums_memo.len() >= 8 {
-            self.sums_memo.remove(0);
-        }
-        self.sums_memo.push((q, n, s));
+        *slot = (q, n, s);
         s
     }
 
