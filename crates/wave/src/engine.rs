@@ -1097,28 +1097,6 @@ impl<R: Real> Tracer<R> {
         Ok(self.outcome())
     }
 
-    /// Its growable buffers, emptied, for the thread's next tracer
-    /// ([`crate::room`]); the tracer is left without them.
-    pub(crate) fn empty_room(&mut self) -> crate::room::Room<R> {
-        use std::mem::take;
-        let mut deposits = take(&mut self.deposits);
-        deposits.clear();
-        let mut exact_trains = take(&mut self.exact_trains);
-        exact_trains.clear();
-        let mut batch = take(&mut self.batch);
-        batch.clear();
-        let mut spare_fronts = take(&mut self.spare_fronts);
-        spare_fronts.clear();
-        crate::room::Room {
-            lanes: self.lanes.iter_mut().map(Lane::take_room).collect(),
-            deposits,
-            exact_trains,
-            scratch: take(&mut self.scratch).emptied(),
-            batch,
-            spare_fronts,
-        }
-    }
-
     /// The observables at the current time.
     pub fn outcome(&self) -> Outcome {
         let mut o = Outcome::from_history(

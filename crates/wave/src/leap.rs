@@ -42,6 +42,7 @@ mod arrivals;
 mod crossing;
 mod exact;
 mod life;
+mod scratch;
 mod together;
 mod trains;
 mod wall;
@@ -49,6 +50,7 @@ mod wall;
 use arrivals::Taken;
 use crossing::{count_before, pow_small};
 pub(crate) use exact::ExactTrains;
+pub(crate) use scratch::LeapScratch;
 
 /// A layer leaps only where its neighbours' round trips are at least this
 /// many of its transits (what a leap sends them would come back too
@@ -137,63 +139,6 @@ struct Quiet<R> {
     horizon: R,
     /// Whether the leap takes in its neighbours' arrivals.
     taking: bool,
-}
-
-/// Buffers a leap fills, kept by the tracer from one leap to the next.
-#[derive(Debug, Clone)]
-pub(crate) struct LeapScratch<R> {
-    phases: Vec<Phase<R>>,
-    /// The layer's fronts when the leap ends, going up and down.
-    up: Vec<Front<R>>,
-    down: Vec<Front<R>>,
-    /// At the wall: `(first arrival, jump, count)` of each phase.
-    bottom_arrivals: Vec<(R, R, u64)>,
-    /// Ringing trains into lattice lanes, deposited together
-    /// (`together.rs`).
-    ringing: Vec<(usize, Train<R>)>,
-    /// Room for sorting phases and fronts (`runs.rs`).
-    phases_run: Vec<Phase<R>>,
-    fronts_run: Vec<Front<R>>,
-}
-
-impl<R> LeapScratch<R> {
-    /// Emptied, its room kept ([`crate::room`]).
-    pub(crate) fn emptied(mut self) -> Self {
-        self.phases.clear();
-        self.up.clear();
-        self.down.clear();
-        self.bottom_arrivals.clear();
-        self.ringing.clear();
-        self.phases_run.clear();
-        self.fronts_run.clear();
-        self
-    }
-
-    /// The bytes its room holds.
-    pub(crate) fn bytes(&self) -> usize {
-        use crate::room::vec_bytes;
-        vec_bytes(&self.phases)
-            + vec_bytes(&self.up)
-            + vec_bytes(&self.down)
-            + vec_bytes(&self.bottom_arrivals)
-            + vec_bytes(&self.ringing)
-            + vec_bytes(&self.phases_run)
-            + vec_bytes(&self.fronts_run)
-    }
-}
-
-impl<R> Default for LeapScratch<R> {
-    fn default() -> Self {
-        Self {
-            phases: Vec::new(),
-            up: Vec::new(),
-            down: Vec::new(),
-            bottom_arrivals: Vec::new(),
-            ringing: Vec::new(),
-            phases_run: Vec::new(),
-            fronts_run: Vec::new(),
-        }
-    }
 }
 
 /// A train of fronts: `c q^k` born at `start + k period`, `k < count`.

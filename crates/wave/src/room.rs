@@ -10,7 +10,7 @@
 //! its memory for the rest of a sweep.
 
 use crate::engine::Tracer;
-use crate::lane::Front;
+use crate::lane::{Front, Lane};
 use crate::leap::{ExactTrains, LeapScratch};
 use crate::real::Real;
 use std::any::Any;
@@ -79,6 +79,30 @@ fn give_back<R: Real>(room: Room<R>) {
 impl<R: Real> Drop for Tracer<R> {
     fn drop(&mut self) {
         give_back(self.empty_room());
+    }
+}
+
+impl<R: Real> Tracer<R> {
+    /// Its growable buffers, emptied, for the thread's next tracer
+    /// ([`crate::room`]); the tracer is left without them.
+    fn empty_room(&mut self) -> Room<R> {
+        use std::mem::take;
+        let mut deposits = take(&mut self.deposits);
+        deposits.clear();
+        let mut exact_trains = take(&mut self.exact_trains);
+        exact_trains.clear();
+        let mut batch = take(&mut self.batch);
+        batch.clear();
+        let mut spare_fronts = take(&mut self.spare_fronts);
+        spare_fronts.clear();
+        Room {
+            lanes: self.lanes.iter_mut().map(Lane::take_room).collect(),
+            deposits,
+            exact_trains,
+            scratch: take(&mut self.scratch).emptied(),
+            batch,
+            spare_fronts,
+        }
     }
 }
 
