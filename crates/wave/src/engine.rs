@@ -1,4 +1,8 @@
-//! The event loop of the exact engine.
+//! The event loop of the exact engine: the tracer's state, and each event
+//! as the fronts meet a boundary. Setting a run up (`setup.rs`), the rod as one
+//! body (`motion.rs`: the wall's ledger, flight, landing and escape), what a
+//! run accounts for (`ledger.rs`) and what it tells its caller
+//! (`observe.rs`) are the submodules.
 //!
 //! Everything here runs in internal units (see `impact_model::units`): the
 //! rod's length, mean density and stiffness and the impact speed are all of
@@ -6,19 +10,16 @@
 //! heights are converted back to the scene's units, exactly (the scales are
 //! powers of two), only where they leave the engine.
 
-use crate::config::{LeapArrivals, Record, Resolution, StopRule, WaveConfig};
+use crate::config::{LeapArrivals, Record, StopRule};
 use crate::error::WaveError;
-use crate::lane::{Direction, Lane, MergeRule, Pushed};
+use crate::lane::{Direction, Lane, Pushed};
 use crate::queue::{EventInPast, EventKey, EventQueue};
 use crate::real::Real;
-use crate::record::{FrontRecord, Recording, WallSample};
+use crate::record::Recording;
 use crate::wall::{self, ContactState};
 use crate::window::Window;
-use impact_model::escape::{EscapeBound, Margin, internal_energy};
-use impact_model::{
-    ContactHistory, EngineKind, InterfaceCoefficients, Outcome, Rod, StopReason, Truncation, Units,
-    WaveConstants,
-};
+use impact_model::escape::EscapeBound;
+use impact_model::{ContactHistory, InterfaceCoefficients, StopReason, Units};
 
 /// Instants this many ulps apart (of the time, plus the shortest transit)
 /// are one: rounding alone could have split them (see [`Window`]). A gap
@@ -32,8 +33,15 @@ pub(crate) const TIE_ULPS: f64 = 64.0;
 /// loop.
 pub(crate) const NEAR_GRAZING: f64 = 1e-7;
 
-/// The merge rule of a lane, from its layer's transit time and wave speed.
-type LaneRule<R> = dyn Fn(f64, f64) -> MergeRule<R>;
+mod ledger;
+mod motion;
+mod observe;
+mod setup;
+
+pub use ledger::Decisions;
+pub(crate) use ledger::Ledger;
+pub(crate) use motion::WallLedger;
+
 /// What one call of [`Tracer::step`] did.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Step {
@@ -69,41 +77,6 @@ pub enum StepKind {
     Stopped(StopReason),
 }
 
-/// Wall impulse bookkeeping: everything the wall does to the rod is the force
-/// `-E0 eps0` while in contact, so the centre of mass is known exactly.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct WallLedger<R> {
-    /// Time of the last update.
-    pub(crate) at: R,
-    /// `I = integral(eps0 dt)`.
-    pub(crate) impulse: R,
-    /// `W = integral(I dt)`, for the centre-of-mass displacement.
-    pub(crate) moment: R,
-}
-
-/// Fronts whose velocity jump is at least this fraction of the impact speed
-/// stay where they were born in a merged lane...
-const KEEP_ABOVE: f64 = 1e-2;
-/// ...up to this many per lane: the few large fronts whose exact timing
-/// decides contacts (the impact front, a landing's front), while the many
-/// small ones they shed are deposited on the lattice.
-const KEEP_AT_MOST: usize = 8;
-
-/// The escape bound's margins ([`impact_model::escape`]). A margin only
-/// makes a run stop later (a few more events), never wrongly, so each is
-/// set well above what it covers. Relative, on the energy balance: the
-/// dropped fronts may leave the true internal energy a hair above the
-/// balance `M (v_b^2 - v^2) / 2` used to schedule the stop.
-const BALANCE_MARGIN: f64 = 1e-9;
-/// Absolute, in impact-speed-times-`sum(t_i)`: above the rounding of the
-/// centre-of-mass displacement, so a rod with no internal energy left
-/// (`D = 0`) still stops only once it has risen clear of it.
-const ROUNDING_MARGIN: f64 = 1e-12;
-/// Relative, when the bound is checked on a merged field: the merged
-/// field's energy and the bottom's offset are those of the deposited fronts,
-/// which differ a little from the exact balance; a failed check reschedules.
-const MERGED_FIELD_MARGIN: f64 = 1e-6;
-
 /// One layer's constants in internal units.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct LayerConst<R> {
@@ -123,40 +96,6 @@ impl<R: Real> LayerConst<R> {
     pub(crate) fn drop_strain(&self) -> R {
         self.drop_strain
     }
-}
-
-/// How close the run's nonlinear decisions came to going the other way:
-/// where rounding can be amplified.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Decisions {
-    /// Contact decisions and landings taken.
-    pub count: u64,
-    /// Those within `1e-7` (relative to the impact's strain or speed) of
-    /// the other outcome.
-    pub near_grazing: u64,
-    /// The smallest relative margin met.
-    pub smallest_margin: f64,
-    /// Settled by a tolerance rather than by the arithmetic: arrivals (or
-    /// births) more than rounding apart combined by the simultaneity
-    /// window, and wall strains within the grazing tolerance of zero taken
-    /// as zero. Each moved the run by up to the tolerance; the solver
-    /// measures what they did to `e` by a rerun with tighter tolerances.
-    pub within_tolerance: u64,
-    /// Of those, the wall strains taken as zero.
-    pub grazed: u64,
-}
-
-/// Drops and merges, with what the error estimate needs of them.
-#[derive(Debug, Clone, Copy, Default)]
-pub(crate) struct Ledger {
-    pub(crate) truncation: Truncation,
-    /// `sum E |d|` over dropped fronts (force mismatch they leave), and
-    /// `sum E |d| s` with `s` their birth times.
-    pub(crate) dropped_force: f64,
-    pub(crate) dropped_force_time: f64,
-    /// Those sums at the last separation (only drops before the last
-    /// separation can change the wall impulse).
-    pub(crate) at_separation: (f64, f64),
 }
 
 /// The exact engine for one rod, in arithmetic `R` (`f64`, or `TwoFloat` to
@@ -248,324 +187,6 @@ pub(crate) fn past(e: EventInPast) -> WaveError {
 }
 
 impl<R: Real> Tracer<R> {
-    /// Prepares a run: the impact happens at `t = 0`, launching the
-    /// compression front `-v_b / c0` from the wall. A tracer runs one
-    /// resolution: `Exact` and `Auto` both mean exact here (choosing between
-    /// runs is [`crate::simulate`]'s job), `Merged` merges.
-    pub fn new(rod: &Rod, config: WaveConfig) -> Result<Self, WaveError> {
-        if let Some(i) = rod.scene().layers.iter().position(|l| l.is_viscous()) {
-            return Err(WaveError::ViscousLayer { layer: i });
-        }
-        config.check_engine()?;
-        let scaled = rod.scaled_layers();
-        let units = *rod.units();
-        let of = R::of;
-        let vb = of(rod.scaled_impact_speed());
-        let t_min = scaled
-            .iter()
-            .map(|l| l.transit_time)
-            .fold(f64::INFINITY, f64::min);
-        let t_max = scaled.iter().map(|l| l.transit_time).fold(0.0, f64::max);
-        let simultaneity = of(config.simultaneity) * of(t_min);
-        let window = Window {
-            fixed: simultaneity,
-            ulps: of(TIE_ULPS * f64::EPSILON),
-            scale: of(t_min),
-        };
-        let (rule, merged): (Box<LaneRule<R>>, bool) = match config.resolution {
-            Resolution::Exact | Resolution::Auto { .. } => (
-                Box::new(move |_, _| MergeRule::Simultaneous { window }),
-                false,
-            ),
-            Resolution::Merged {
-                per_transit,
-                per_longest,
-            } => (
-                Box::new(move |transit: f64, speed: f64| MergeRule::Lattice {
-                    spacing: simultaneity.max(of((per_transit * transit).min(per_longest * t_max))),
-                    keep_above: of(KEEP_ABOVE) * vb / of(speed),
-                    keep_at_most: KEEP_AT_MOST,
-                }),
-                true,
-            ),
-        };
-        // The layers' derived constants in the run's arithmetic, from their
-        // primary quantities by the model's formulas (`WaveConstants`,
-        // `InterfaceCoefficients::of_sides`): a double run gets the model's
-        // numbers bit for bit, a double-double run its own. Taken from the model's doubles, they carried double
-        // rounding into the double-double rerun: on the grazing line
-        // `alpha = 0.1`, whose points are rerun so, `e` was 2.5 ulps from the
-        // 40-digit value under a bound of 1.7 (`tests/integration/tracker.rs`).
-        let layers: Vec<LayerConst<R>> = scaled
-            .iter()
-            .map(|l| {
-                let (length, modulus) = (of(l.length), of(l.modulus));
-                let waves = WaveConstants::of(length, modulus, of(l.density));
-                LayerConst {
-                    bottom: of(l.bottom),
-                    top: of(l.top),
-                    length,
-                    modulus,
-                    wave_speed: waves.wave_speed,
-                    impedance: waves.impedance,
-                    transit_time: waves.transit_time,
-                    drop_strain: of(config.drop_tolerance) * vb / waves.wave_speed,
-                }
-            })
-            .collect();
-        let n = layers.len();
-        // The top's lanes fold into one (its reflections carried by the
-        // fronts, no events at the free end), except where fronts are
-        // recorded and where a merged run may leap a fast top (a folded
-        // lane is not leapt, see `leap`): a top ringing a million times
-        // under a slow layer otherwise takes the loop a million steps.
-        let fast_top = n >= 2
-            && scaled[n - 1].transit_time * crate::leap::LEAST_TRANSITS
-                < scaled[n - 2].transit_time;
-        // An exact run leaps only when nothing is recorded: a recording
-        // shows every event. A double-double run never does
-        // (`Real::LEAPS`), but lays its lanes out as the double run it
-        // checks does (a merged run's lattice lanes are its discretisation).
-        let may_leap =
-            config.leap_quiet_layers && (merged || !(config.record.wall || config.record.fronts));
-        let leaps = R::LEAPS && may_leap;
-        let fold = !(config.record.fronts || (may_leap && fast_top));
-        let mut room = crate::room::take::<R>();
-        let mut lanes: Vec<Lane<R>> = scaled
-            .iter()
-            .enumerate()
-            .flat_map(|(i, l)| {
-                let transit = layers[i].transit_time;
-                [Direction::Up, Direction::Down]
-                    .map(|d| Lane::new(i, d, transit, rule(l.transit_time, l.wave_speed)))
-            })
-            .collect();
-        for (lane, kept) in lanes.iter_mut().zip(room.lanes.drain(..)) {
-            lane.move_into(kept);
-        }
-        let top_up = Lane::<R>::index(n - 1, Direction::Up);
-        lanes[top_up].folded = fold;
-        let from_above = (0..=n)
-            .map(|b| match b {
-                b if b == n => None,
-                b if fold && b == n - 1 => Some(top_up),
-                b => Some(Lane::<R>::index(b, Direction::Down)),
-            })
-            .collect();
-        let interfaces = layers
-            .windows(2)
-            .map(|w| {
-                let side = |l: &LayerConst<R>| (l.impedance, l.modulus);
-                InterfaceCoefficients::of_sides(side(&w[0]), side(&w[1]))
-            })
-            .collect();
-        let c0 = layers[0].wave_speed;
-        let transit_sum: f64 = scaled.iter().map(|l| l.transit_time).sum();
-        let two = of(2.0);
-        let mut engine = Self {
-            interfaces,
-            // At rest relative to the rod's motion at -v_b: a = v_b/2c, b = -v_b/2c.
-            up_base: layers.iter().map(|l| vb / (two * l.wave_speed)).collect(),
-            down_base: layers.iter().map(|l| -vb / (two * l.wave_speed)).collect(),
-            queue: EventQueue::new(n),
-            lanes,
-            from_above,
-            contact: ContactState::InContact { strain: R::zero() },
-            ledger: WallLedger {
-                at: R::zero(),
-                impulse: R::zero(),
-                moment: R::zero(),
-            },
-            history: ContactHistory::new(),
-            impact_speed: vb,
-            mass: scaled
-                .iter()
-                .fold(R::zero(), |m, l| m + of(l.density) * of(l.length)),
-            escape: EscapeBound::new(of(rod.scaled_compliance_moment()), of(rod.scaled_mass())),
-            window,
-            grazing_strain: of(config.grazing_tolerance) * vb / c0,
-            merged,
-            leaps,
-            leap_arrivals: config.leap_arrivals,
-            arrivals_taken: 0,
-            max_events: config.max_events,
-            max_time: of(config.max_time_factor * transit_sum),
-            stop_rule: config.stop,
-            record: config.record,
-            recording: Recording::default(),
-            drops: Ledger::default(),
-            decisions: Decisions {
-                smallest_margin: f64::INFINITY,
-                ..Decisions::default()
-            },
-            events: 0,
-            folded_reflections: 0,
-            leaped: 0,
-            leap_work: 0,
-            leap_after: crate::leap::first_leaps(&layers, fold),
-            leap_retry: vec![0; n],
-            deposits: room.deposits,
-            exact_trains: room.exact_trains,
-            sums_memo: Vec::new(),
-            scratch: room.scratch,
-            ln_memo: None,
-            batch: room.batch,
-            spare_fronts: room.spare_fronts,
-            next_id: 0,
-            now: R::zero(),
-            stopped: None,
-            units,
-            transit_times: rod.transit_times(),
-            layers,
-        };
-        if let StopRule::Horizon { factor } = config.stop {
-            let horizon = of(factor) * of(t_max);
-            engine
-                .queue
-                .schedule(EventKey::Horizon, horizon, R::zero())
-                .map_err(past)?;
-        }
-        // The impact: the bottom is stopped, v: -v_b -> 0, so d = -v_b / c0.
-        let first = -vb / c0;
-        engine.contact = ContactState::InContact { strain: first };
-        engine.spawn(0, Direction::Up, R::zero(), first, &[])?;
-        engine.record_wall();
-        Ok(engine)
-    }
-
-    /// Current time, in the scene's units: that of the last processed event.
-    pub fn time(&self) -> f64 {
-        self.now.to_f64() * self.units.time
-    }
-
-    /// The contact state in the scene's units.
-    pub fn contact_state(&self) -> ContactState {
-        let u = &self.units;
-        self.contact
-            .to_f64(u.strain(), u.displacement(), u.amplitude, u.time)
-    }
-
-    /// Boundary events so far (reflections at a folded top included).
-    pub fn events(&self) -> u64 {
-        self.events + self.folded_reflections + self.pending_reflections() + self.leaped
-    }
-
-    /// The run's work so far: iterations of the event loop, plus what
-    /// leaps did in their stead (a phase advanced, a lattice cell filled).
-    /// A leap counts as one iteration but can fill thousands of cells: a
-    /// budget of iterations alone let merged ladders refine far past it.
-    pub fn steps(&self) -> u64 {
-        self.events + self.leap_work
-    }
-
-    /// Boundary events advanced in closed form (by leaps over quiet layers).
-    pub fn leaped_events(&self) -> u64 {
-        self.leaped
-    }
-
-    /// Fronts of a folded top lane that have reached the top but not come
-    /// back yet.
-    fn pending_reflections(&self) -> u64 {
-        self.lanes
-            .iter()
-            .filter(|l| l.folded)
-            .map(|l| l.count_born_by(|born| born + l.transit <= self.now))
-            .sum()
-    }
-
-    /// Why the run stopped, once it has.
-    pub fn stopped(&self) -> Option<StopReason> {
-        self.stopped
-    }
-
-    /// What was recorded (empty unless asked in the config).
-    pub fn recording(&self) -> &Recording {
-        &self.recording
-    }
-
-    /// Fronts of neighbouring lanes that leaps took in (`leap/arrivals.rs`).
-    pub fn arrivals_taken(&self) -> u64 {
-        self.arrivals_taken
-    }
-
-    /// What was dropped and merged so far.
-    pub fn truncation(&self) -> Truncation {
-        self.drops.truncation
-    }
-
-    /// How close the contact decisions came to grazing.
-    pub fn decisions(&self) -> Decisions {
-        self.decisions
-    }
-
-    /// Fronts alive now, over all lanes (the run's memory).
-    pub fn live_fronts(&self) -> usize {
-        self.lanes.iter().map(Lane::len).sum()
-    }
-
-    /// A first-order bound on how far dropped fronts moved `e`: each left a
-    /// force mismatch `E |d|` at its boundary from its birth on, whose
-    /// impulse until the last separation changes the wall impulse at most
-    /// twice over.
-    pub fn dropped_error_bound(&self) -> f64 {
-        let (force, force_time) = if self.history.in_contact() {
-            (self.drops.dropped_force, self.drops.dropped_force_time)
-        } else {
-            self.drops.at_separation
-        };
-        let tc = self.history.contact_time(self.time()) / self.units.time;
-        let impulse = (force * tc - force_time).max(0.0);
-        2.0 * impulse / (self.mass.to_f64() * self.impact_speed.to_f64())
-    }
-
-    /// Centre-of-mass velocity in internal units, exact from the wall
-    /// impulse: `M dv/dt = -E0 eps0`.
-    pub(crate) fn centre_of_mass_velocity(&self) -> R {
-        let impulse = self.impulse_at(self.now);
-        -self.impact_speed - self.layers[0].modulus / self.mass * impulse
-    }
-
-    /// The restitution so far.
-    pub fn restitution(&self) -> f64 {
-        (self.centre_of_mass_velocity() / self.impact_speed).to_f64()
-    }
-
-    fn impulse_at(&self, t: R) -> R {
-        match self.contact {
-            ContactState::InContact { strain } => {
-                self.ledger.impulse + strain * (t - self.ledger.at)
-            }
-            ContactState::Free { .. } => self.ledger.impulse,
-        }
-    }
-
-    /// Centre-of-mass displacement since the impact.
-    fn centre_of_mass_displacement(&self) -> R {
-        -self.impact_speed * self.now - self.layers[0].modulus / self.mass * self.ledger.moment
-    }
-
-    /// Brings the wall ledger (and a free bottom's height) up to time `t`.
-    pub(crate) fn advance_wall(&mut self, t: R) {
-        let dt = t - self.ledger.at;
-        let half = R::of(0.5);
-        match &mut self.contact {
-            ContactState::InContact { strain } => {
-                self.ledger.moment += self.ledger.impulse * dt + half * *strain * dt * dt;
-                self.ledger.impulse += *strain * dt;
-            }
-            ContactState::Free {
-                height,
-                velocity,
-                at,
-            } => {
-                self.ledger.moment += self.ledger.impulse * dt;
-                *height += *velocity * (t - *at);
-                *at = t;
-            }
-        }
-        self.ledger.at = t;
-    }
-
     /// Adds a front born at `t` at the start of the lane of (`layer`, `dir`).
     /// Inlined, as are `take_head` and `boundary_event`: out of line, their
     /// calls (saved registers, spilled arguments) were a quarter of an
@@ -626,67 +247,6 @@ impl<R: Real> Tracer<R> {
             }
         }
         Ok(())
-    }
-
-    /// Counts a front too small to keep: what it carried goes into the
-    /// error estimate (see [`Tracer::dropped_error_bound`]). Rare, so kept
-    /// out of the event loop's hot path.
-    #[cold]
-    pub(crate) fn drop_front(&mut self, layer: usize, born: R, jump: R) {
-        let l = self.layers[layer];
-        let d = &mut self.drops;
-        d.truncation.dropped_fronts += 1;
-        d.truncation.dropped_velocity += (jump.abs() * l.wave_speed / self.impact_speed).to_f64();
-        let force = (l.modulus * jump.abs()).to_f64();
-        d.dropped_force += force;
-        d.dropped_force_time += force * born.to_f64();
-    }
-
-    /// Records a new front (only when fronts are recorded).
-    #[cold]
-    fn record_front(
-        &mut self,
-        id: u32,
-        (layer, direction): (usize, Direction),
-        (born, arrives): (R, R),
-        jump: R,
-        parents: &[u32],
-    ) {
-        let u = &self.units;
-        self.recording.fronts.push(FrontRecord {
-            id,
-            layer,
-            direction,
-            born: born.to_f64() * u.time,
-            arrives: arrives.to_f64() * u.time,
-            jump: jump.to_f64() * u.strain(),
-            parents: parents.to_vec(),
-        });
-    }
-
-    /// Adds a merged front's jump and parents to its record.
-    #[cold]
-    fn record_merge(&mut self, id: u32, jump: R, parents: &[u32]) {
-        if let Some(rec) = self.recording.fronts.get_mut(id as usize) {
-            rec.jump += jump.to_f64() * self.units.strain();
-            rec.parents.extend_from_slice(parents);
-        }
-    }
-
-    /// Counts a combination of two instants `gap > 0` apart, the later at
-    /// `at`, if the gap is more than rounding (a few ulps of the time and
-    /// of the shortest transit): a tie that rounding split is no use of the
-    /// tolerance.
-    #[cold]
-    pub(crate) fn note_combined(&mut self, gap: R, at: R) {
-        // the window's rounding part, and the rounding of the deadline
-        // `t + window` itself (an ulp of `t`)
-        let w = self.window;
-        let now = at.abs();
-        let rounding = w.ulps * (now + w.scale) + R::of(2.0 * f64::EPSILON) * now;
-        if gap > rounding {
-            self.decisions.within_tolerance += 1;
-        }
     }
 
     /// Takes the head of lane `index` if it arrives by `deadline`: its
@@ -874,11 +434,6 @@ impl<R: Real> Tracer<R> {
         StepKind::Stopped(reason)
     }
 
-    /// Counts decisions a leap took without coming near grazing.
-    pub(crate) fn note_decisions(&mut self, count: u64) {
-        self.decisions.count += count;
-    }
-
     /// Spawns a front with no recorded parents (for leaps).
     pub(crate) fn spawn_front(
         &mut self,
@@ -888,16 +443,6 @@ impl<R: Real> Tracer<R> {
         jump: R,
     ) -> Result<(), WaveError> {
         self.spawn(layer, dir, t, jump, &[])
-    }
-
-    /// Notes how close a decision came to going the other way.
-    fn note_decision(&mut self, margin: R) {
-        let m = margin.abs().to_f64();
-        self.decisions.count += 1;
-        if m < NEAR_GRAZING {
-            self.decisions.near_grazing += 1;
-        }
-        self.decisions.smallest_margin = self.decisions.smallest_margin.min(m);
     }
 
     /// A front reaching the free bottom as it lands: the wall's boundary
@@ -970,145 +515,5 @@ impl<R: Real> Tracer<R> {
             self.spawn(b, Direction::Up, t, up, parents)?;
             Ok(StepKind::Interface(b))
         }
-    }
-
-    /// After a separation with the centre of mass moving up, schedules the
-    /// time from which no reconnection is possible
-    /// ([`impact_model::escape`]), from the exact energy balance: the rod's
-    /// energy is still `M v_b^2 / 2`, so `E_int = M (v_b^2 - v^2) / 2`.
-    fn schedule_escape(&mut self, t: R) -> Result<(), WaveError> {
-        if self.stop_rule != StopRule::Escape {
-            return Ok(());
-        }
-        let v = self.centre_of_mass_velocity();
-        let of = R::of;
-        let internal = (of(0.5) * self.mass * (self.impact_speed.powi(2) - v * v)).max(R::zero());
-        let transits: R = self
-            .layers
-            .iter()
-            .fold(R::zero(), |s, l| s + l.length / l.wave_speed);
-        let margin = Margin {
-            relative: BALANCE_MARGIN,
-            absolute: of(ROUNDING_MARGIN) * self.impact_speed * transits,
-        };
-        let reach = self.escape.reach(internal, margin);
-        let rise = self.centre_of_mass_displacement();
-        let Some(at) = EscapeBound::escape_time(t, reach, rise, v) else {
-            return Ok(());
-        };
-        self.queue
-            .schedule(EventKey::Escape, at, self.now)
-            .map_err(past)
-    }
-
-    /// With merged fronts, energy and momentum are those of the merged
-    /// field, which may differ a little from the exact balance the escape
-    /// time was computed from. Checks the bound on the field itself (the
-    /// bottom's offset from the centre of mass can never exceed `D`) and
-    /// reschedules when it does not hold yet.
-    fn escape_confirmed(&mut self) -> Result<bool, WaveError> {
-        let t = self.now;
-        self.advance_wall(t);
-        let ContactState::Free { height: h, .. } = self.contact else {
-            return Ok(false);
-        };
-        let fields = self.field_state();
-        let v = fields.momentum / self.mass;
-        let internal = internal_energy(fields.energy, self.mass, v);
-        let reach = self
-            .escape
-            .reach(internal, Margin::relative(MERGED_FIELD_MARGIN));
-        // height of the centre of mass above the wall
-        let rise = h + fields.bottom_below_centre;
-        if rise > reach && v > R::zero() {
-            return Ok(true);
-        }
-        if let Some(at) = EscapeBound::escape_time(t, reach, rise, v) {
-            self.queue
-                .schedule(EventKey::Escape, at + self.window.at(at), self.now)
-                .map_err(past)?;
-        }
-        Ok(false)
-    }
-
-    /// Keeps the landing (reconnection) event in step with the free bottom.
-    pub(crate) fn schedule_landing(&mut self) -> Result<(), WaveError> {
-        match self.contact {
-            ContactState::Free {
-                height,
-                velocity,
-                at,
-            } => match wall::landing_time(height, velocity, at) {
-                Some(land) => self
-                    .queue
-                    .schedule(EventKey::Reconnection, land.max(self.now), self.now)
-                    .map_err(past),
-                None => {
-                    self.queue.cancel(EventKey::Reconnection);
-                    Ok(())
-                }
-            },
-            ContactState::InContact { .. } => {
-                self.queue.cancel(EventKey::Reconnection);
-                Ok(())
-            }
-        }
-    }
-
-    fn reconnect(&mut self, t: R) -> Result<(), WaveError> {
-        self.advance_wall(t);
-        let ContactState::Free { velocity, .. } = self.contact else {
-            return Ok(());
-        };
-        self.note_decision(velocity / self.impact_speed);
-        let (jump, state) = wall::reconnect(velocity, self.layers[0].wave_speed);
-        self.contact = state;
-        self.history.reconnect(t.to_f64() * self.units.time);
-        self.queue.cancel(EventKey::Escape);
-        self.spawn(0, Direction::Up, t, jump, &[])?;
-        self.record_wall();
-        Ok(())
-    }
-
-    pub(crate) fn record_wall(&mut self) {
-        if !self.record.wall {
-            return;
-        }
-        let state = self.contact_state();
-        let (strain, height, velocity) = match state {
-            ContactState::InContact { strain } => (strain, 0.0, 0.0),
-            ContactState::Free {
-                height, velocity, ..
-            } => (0.0, height, velocity),
-        };
-        self.recording.wall.push(WallSample {
-            time: self.time(),
-            strain,
-            height,
-            velocity,
-        });
-    }
-
-    /// Steps until the run stops.
-    pub fn run(&mut self) -> Result<Outcome, WaveError> {
-        while self.stopped.is_none() {
-            self.step()?;
-        }
-        Ok(self.outcome())
-    }
-
-    /// The observables at the current time.
-    pub fn outcome(&self) -> Outcome {
-        let mut o = Outcome::from_history(
-            EngineKind::Wave,
-            self.restitution(),
-            &self.history,
-            &self.transit_times,
-            self.time(),
-            self.stopped.unwrap_or(StopReason::HorizonInContact),
-        );
-        o.events = Some(self.events());
-        o.truncation = Some(self.drops.truncation);
-        o
     }
 }
