@@ -22,6 +22,7 @@ mod engine;
 mod error;
 mod fields;
 mod geometric;
+mod ladder;
 mod lane;
 mod leap;
 pub mod queue;

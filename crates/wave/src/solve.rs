@@ -29,10 +29,10 @@
 //!   arithmetic, the repeat's value is reported, and the difference says
 //!   what double precision alone would have lost.
 
-use crate::config::{COARSEST, Precision, Resolution, WaveConfig};
-use crate::convergence::{LOOK_BACK, SLOWEST_ORDER, converging, observed_order, refinement_error};
+use crate::config::{Precision, Resolution, WaveConfig};
 use crate::engine::{Decisions, Tracer, WaveEngine};
 use crate::error::WaveError;
+use crate::ladder::{fixed_lattice, ladder};
 use crate::real::DoubleDouble;
 use crate::real::Real;
 use impact_model::{ErrorEstimate, Outcome, Rod, StopReason};
@@ -84,7 +84,9 @@ pub enum LadderProgress {
         /// Its `e`.
         restitution: f64,
         /// The bound its comparisons give (two levels at least; the
-        /// reported bound is set when the ladder stops).
+        /// refinement's part alone for the levels run before the third,
+        /// which have no twin; the reported bound is set when the ladder
+        /// stops).
         bound: f64,
         /// Work done so far (loop iterations, and leaps' fronts and cells).
         work: u64,
@@ -274,211 +276,13 @@ fn tolerance_effect(
 }
 
 /// One run in arithmetic `R`.
-fn run<R: Real>(rod: &Rod, config: WaveConfig) -> Result<Tracer<R>, WaveError> {
+pub(crate) fn run<R: Real>(rod: &Rod, config: WaveConfig) -> Result<Tracer<R>, WaveError> {
     let mut engine = Tracer::<R>::new(rod, config)?;
     while engine.stopped().is_none() {
         engine.step()?;
     }
     Ok(engine)
 }
-
-/// What the merged runs say about the reported one.
-struct MergeCheck {
-    per_transit: f64,
-    per_longest: f64,
-    bound: f64,
-    /// The last three levels' observed order (see [`observed_order`]).
-    order: Option<f64>,
-    /// Whether those levels look converging (see [`converging`]).
-    converging: bool,
-    method: String,
-}
-
-/// The coarsest spacing a ladder starts from: a fraction of each lane's
-/// transit time, and of the longest transit time (a slow lane then holds
-/// at most 250 fronts). Lattices of 0.4 transits were tried and dropped:
-/// their `e` is off by `5e-2` on six-layer rods, and set against finer
-/// levels it only inflated their bounds. The two halve together; their ratio keeps the
-/// slow lanes fifty times finer than their own transit-relative share,
-/// because coarse slow lattices cost accuracy where large fronts return
-/// (measured at the paper's hard corner).
-const LADDER_START: (f64, f64) = (0.2, 4e-3);
-
-/// Levels a ladder needs before its estimate is trusted: two comparisons.
-const MIN_LEVELS: usize = 3;
-
-/// The rod with its bottom layer's modulus changed by `1e-12`: rods that
-/// chatter for hundreds of bounces amplify any perturbation, a merge among
-/// them, chaotically (a steel base under rubber moves `e` by `1e-4`), and
-/// the twin's difference measures that.
-fn nudged(rod: &Rod) -> Rod {
-    let mut scene = rod.scene().clone();
-    scene.layers[0].modulus *= 1.0 + 1e-12;
-    scene.validate().unwrap_or_else(|_| rod.clone())
-}
-
-fn merged_at(config: &WaveConfig, p: f64, l: f64, max_events: u64) -> WaveConfig {
-    WaveConfig {
-        resolution: Resolution::Merged {
-            per_transit: p,
-            per_longest: l,
-        },
-        precision: Precision::Double,
-        max_events: max_events.min(config.max_events),
-        ..config.clone()
-    }
-}
-
-/// The bound of the reported level and how it was found.
-fn merge_check(levels: &[f64], perturbed: f64, p: f64, l: f64, used: u64) -> MergeCheck {
-    let refined = refinement_error(levels);
-    let order = observed_order(levels);
-    let converging = converging(levels);
-    let seen = match (order, converging) {
-        (Some(o), true) => format!("; the last three levels converge at order {o:.2}"),
-        (None, true) => "; e stands still over the last levels".to_string(),
-        (Some(o), false) => format!(
-            "; the last three levels converge at order {o:.2}, below {SLOWEST_ORDER}: not yet seen converging, so the estimate may be low"
-        ),
-        (None, false) => "; no convergence is seen (fewer than three levels, or e moved after standing still): the estimate may be low".to_string(),
-    };
-    MergeCheck {
-        per_transit: p,
-        per_longest: l,
-        bound: 2.0 * refined.max(perturbed),
-        order,
-        converging,
-        method: format!(
-            "merged: twice the larger of the refinement estimate ({refined:.1e}: the largest |e - e(2^j as coarse)| / (2^j - 1) over {} coarser lattices) and the difference from the bottom's modulus changed by 1e-12 ({perturbed:.1e}); lattice spacings {p:.3e} of each transit, {l:.1e} of the longest ({used} units of work in all: loop iterations, and the fronts and lattice cells of leaps){seen}",
-            (levels.len() - 1).min(LOOK_BACK),
-        ),
-    }
-}
-
-/// A merged run on the given lattice, checked against the lattices 2, 4,
-/// 8 and 16 times as coarse (those within [`COARSEST`]) and a perturbed
-/// twin, all run side by side.
-fn fixed_lattice(
-    rod: &Rod,
-    config: &WaveConfig,
-    p: f64,
-    l: f64,
-) -> Result<(WaveEngine, MergeCheck), WaveError> {
-    use rayon::prelude::*;
-    let twin_rod = nudged(rod);
-    let coarser: Vec<f64> = (1..=LOOK_BACK as i32)
-        .map(|j| 2f64.powi(j))
-        .filter(|f| f * p <= COARSEST)
-        .collect();
-    let max = config.max_events;
-    let ((fine, twin), coarse) = rayon::join(
-        || {
-            rayon::join(
-                || run::<f64>(rod, merged_at(config, p, l, max)),
-                || run::<f64>(&twin_rod, merged_at(config, p, l, max)),
-            )
-        },
-        || {
-            coarser
-                .par_iter()
-                .rev()
-                .map(|f| {
-                    run::<f64>(rod, merged_at(config, f * p, f * l, max))
-                        .map(|e| (e.restitution(), e.steps()))
-                })
-                .collect::<Result<Vec<_>, _>>()
-        },
-    );
-    let (fine, twin, coarse) = (fine?, twin?, coarse?);
-    let used = fine.steps() + twin.steps() + coarse.iter().map(|c| c.1).sum::<u64>();
-    let mut levels: Vec<f64> = coarse.iter().map(|c| c.0).collect();
-    levels.push(fine.restitution());
-    let perturbed = (fine.restitution() - twin.restitution()).abs();
-    let check = merge_check(&levels, perturbed, p, l, used);
-    Ok((fine, check))
-}
-
-/// Merged runs from [`LADDER_START`] down by halves, each with its
-/// perturbed twin, until the bound is at most `target`, the next level
-/// would not fit the budget of work (see [`WaveEngine::steps`]), or the lattice reaches
-/// [`FINEST`]; at least [`MIN_LEVELS`] levels are run, whatever they cost
-/// (every scene finishes). The finest level is reported; if a level cannot
-/// finish within `max_events`, the finest before it is, with what its
-/// comparisons say (two levels at least).
-fn ladder(
-    rod: &Rod,
-    config: &WaveConfig,
-    budget: u64,
-    target: f64,
-    observe: &dyn Fn(LadderProgress),
-) -> Result<(WaveEngine, MergeCheck), WaveError> {
-    let twin_rod = nudged(rod);
-    let (mut p, mut l) = LADDER_START;
-    let mut used = 0;
-    let mut levels = Vec::new();
-    let mut coarser: Option<(WaveEngine, MergeCheck)> = None;
-    loop {
-        let max = config.max_events;
-        let (fine, twin) = rayon::join(
-            || run::<f64>(rod, merged_at(config, p, l, max)),
-            || run::<f64>(&twin_rod, merged_at(config, p, l, max)),
-        );
-        let (fine, twin) = match (fine, twin, coarser) {
-            (Ok(fine), Ok(twin), _) => (fine, twin),
-            // a level past --max-events: the finest level that finished is
-            // reported, if it was checked against a coarser one (every
-            // scene finishes), and the method says on how little
-            (Err(WaveError::EventLimit { .. }), _, Some((engine, mut check)))
-            | (_, Err(WaveError::EventLimit { .. }), Some((engine, mut check))) => {
-                check.method.push_str(&format!(
-                    "; the next level did not finish within {max} events, so the estimate rests on {} levels",
-                    levels.len()
-                ));
-                return Ok((engine, check));
-            }
-            (Err(e), _, _) | (_, Err(e), _) => return Err(e),
-        };
-        used += fine.steps() + twin.steps();
-        levels.push(fine.restitution());
-        let perturbed = (fine.restitution() - twin.restitution()).abs();
-        let check = merge_check(&levels, perturbed, p, l, used);
-        observe(LadderProgress::LevelDone {
-            level: levels.len(),
-            per_transit: p,
-            restitution: fine.restitution(),
-            bound: check.bound,
-            work: used,
-        });
-        // events about double with each halving
-        let next_cost = 2 * (fine.steps() + twin.steps());
-        let enough = levels.len() >= MIN_LEVELS;
-        let done =
-            enough && (check.bound <= target || used + next_cost > budget) || p / 2.0 < FINEST;
-        if done {
-            return Ok((fine, check));
-        }
-        // A level takes at least twice the work of the one before (2.0 to
-        // 5.4 times, measured over the layer survey's slowest rods), so one
-        // whose predecessor took over half of `max_events` would run into
-        // the limit: rod 12 of the survey spent 14 s of its 32 s on such a
-        // level before reporting the one before it anyway.
-        let next_run = 2 * fine.steps().max(twin.steps());
-        if levels.len() >= 2 && next_run > max {
-            let mut check = check;
-            check.method.push_str(&format!(
-                "; the next level would take about {next_run} events, past the limit of {max} (a level takes at least twice its predecessor's), so the estimate rests on {} levels",
-                levels.len()
-            ));
-            return Ok((fine, check));
-        }
-        coarser = (levels.len() >= 2).then_some((fine, check));
-        p /= 2.0;
-        l /= 2.0;
-    }
-}
-
-/// The finest lattice a merged ladder goes down to (fraction of a transit).
-const FINEST: f64 = 1e-4;
 
 /// An outcome that is final, or the reason it is not.
 fn finished<R: Real>(outcome: Outcome, engine: &Tracer<R>) -> Result<Outcome, WaveError> {

@@ -520,3 +520,58 @@ fn a_ladder_reports_each_level_and_the_last_is_the_outcome() {
     assert_eq!(last.2, plain.restitution);
     assert!(last.3 <= plain.error_bound.unwrap());
 }
+
+/// A ladder's levels before the third run side by side and without their
+/// perturbed twins; what it reports is still what each level run alone
+/// gives: every level's `e` bit for bit, and the bound twice the larger of
+/// the refinement estimate (`|e - e(2^j as coarse)| / (2^j - 1)` over up
+/// to four coarser levels) and the reported level's difference from its
+/// twin (the bottom's modulus changed by `1e-12`), recomputed here from
+/// runs of the engine alone.
+#[test]
+fn a_ladder_reports_what_its_levels_run_alone_give() {
+    use impact_wave::{LadderProgress, WaveEngine, solve_observed};
+    use std::cell::RefCell;
+    let rod = survey_rod_0();
+    let seen = RefCell::new(Vec::new());
+    let outcome = solve_observed(&rod, &WaveConfig::default(), &|p| {
+        if let LadderProgress::LevelDone { restitution, .. } = p {
+            seen.borrow_mut().push(restitution);
+        }
+    })
+    .unwrap()
+    .outcome;
+    let reported = seen.into_inner();
+    assert!(reported.len() >= 3, "{reported:?}");
+    let alone = |rod: &impact_model::Rod, k: usize| {
+        let f = 0.5f64.powi(k as i32);
+        let config = WaveConfig {
+            resolution: Resolution::Merged {
+                per_transit: 0.2 * f,
+                per_longest: 4e-3 * f,
+            },
+            ..WaveConfig::default()
+        };
+        let mut engine = WaveEngine::new(rod, config).unwrap();
+        engine.run().unwrap().restitution
+    };
+    let levels: Vec<f64> = (0..reported.len()).map(|k| alone(&rod, k)).collect();
+    assert_eq!(levels, reported);
+    let finest = levels[levels.len() - 1];
+    assert_eq!(outcome.restitution, finest);
+    let refined = (1..=4.min(levels.len() - 1))
+        .map(|j| (finest - levels[levels.len() - 1 - j]).abs() / (2f64.powi(j as i32) - 1.0))
+        .fold(0.0, f64::max);
+    let mut scene = rod.scene().clone();
+    scene.layers[0].modulus *= 1.0 + 1e-12;
+    let twin = alone(&scene.validate().unwrap(), levels.len() - 1);
+    let bound = 2.0 * refined.max((finest - twin).abs());
+    assert_eq!(outcome.error_estimate.as_ref().unwrap().merged, bound);
+    // the same on one thread, where the levels run one after the other
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let alone = pool.install(|| simulate(&rod, &WaveConfig::default()).unwrap());
+    assert_eq!(alone, outcome);
+}
