@@ -192,9 +192,15 @@ pub(crate) fn ladder(
             work: used,
         });
     }
+    // a twin that was not needed is dropped, finished or not, failed or
+    // not (how far it got depends on the threads' timing)
+    let twin = match too_long(second.steps()) {
+        true => twin.transpose()?.map(Box::new),
+        false => None,
+    };
     let mut coarser = Some(Coarser::Twinless {
         engine: second,
-        twin: twin.transpose()?.map(Box::new),
+        twin,
         levels: levels.clone(),
         lattice: (p1, l1),
         used,
