@@ -194,9 +194,10 @@ pub(crate) fn ladder(
     }
     // a twin that was not needed is dropped, finished or not, failed or
     // not (how far it got depends on the threads' timing)
-    let twin = match too_long(second.steps()) {
-        true => twin.transpose()?.map(Box::new),
-        false => None,
+    let twin = if too_long(second.steps()) {
+        twin.transpose()?.map(Box::new)
+    } else {
+        None
     };
     let mut coarser = Some(Coarser::Twinless {
         engine: second,
@@ -207,11 +208,7 @@ pub(crate) fn ladder(
     });
     let (mut p, mut l) = (p1 / 2.0, l1 / 2.0);
     if let Some(c) = coarser.take_if(|c| too_long(c.engine().steps())) {
-        let note = format!(
-            "; the next level would take about {} events, past the limit of {max} (a level takes at least twice its predecessor's), so the estimate rests on {} levels",
-            2 * c.engine().steps(),
-            levels.len()
-        );
+        let note = past_the_limit(2 * c.engine().steps(), max, levels.len());
         return c.checked(&twin_rod, config, max, &note);
     }
     loop {
@@ -255,20 +252,26 @@ pub(crate) fn ladder(
         if done {
             return Ok((fine, check));
         }
-        // (see `too_long`)
-        let next_run = 2 * fine.steps().max(twin.steps());
-        if too_long(fine.steps().max(twin.steps())) {
+        let longest = fine.steps().max(twin.steps());
+        if too_long(longest) {
             let mut check = check;
-            check.method.push_str(&format!(
-                "; the next level would take about {next_run} events, past the limit of {max} (a level takes at least twice its predecessor's), so the estimate rests on {} levels",
-                levels.len()
-            ));
+            check
+                .method
+                .push_str(&past_the_limit(2 * longest, max, levels.len()));
             return Ok((fine, check));
         }
         coarser = Some(Coarser::Checked(fine, check));
         p /= 2.0;
         l /= 2.0;
     }
+}
+
+/// Why a ladder stopped before a level that would take about `next_run`
+/// events, for the method.
+fn past_the_limit(next_run: u64, max: u64, levels: usize) -> String {
+    format!(
+        "; the next level would take about {next_run} events, past the limit of {max} (a level takes at least twice its predecessor's), so the estimate rests on {levels} levels"
+    )
 }
 
 /// The finest level a ladder has finished, kept in case the next cannot
