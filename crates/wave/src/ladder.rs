@@ -155,10 +155,11 @@ pub(crate) fn ladder(
     let (p1, l1) = (p0 / 2.0, l0 / 2.0);
     // A level takes at least twice the work of the one before (2.0 to 5.4
     // times, measured over the layer survey's slowest rods), so one whose
-    // predecessor took over half of `max_events` would run into the limit:
-    // rod 12 of the survey spent 14 s of its 32 s on such a level before
-    // reporting the one before it anyway.
-    let too_long = |steps: u64| 2 * steps > max;
+    // predecessor's run took over half of `max_events` would run into the
+    // limit: rod 12 of the survey spent 14 s of its 32 s on such a level
+    // before reporting the one before it anyway. (Judged on the level's own
+    // run: the second level's twin is not always run.)
+    let too_long = |level: &WaveEngine| 2 * level.steps() > max;
     const { assert!(MIN_LEVELS == 3) };
     // The second level's twin is needed only if that level is reported
     // (the third would not fit `max_events`): it starts where the first
@@ -168,70 +169,79 @@ pub(crate) fn ladder(
     let (second, (first, twin)) = rayon::join(
         || {
             let second = run::<f64>(rod, merged_at(config, p1, l1, max));
-            let reported = matches!(&second, Ok(s) if too_long(s.steps()));
+            let reported = matches!(&second, Ok(s) if too_long(s));
             twin_needless.store(!reported, Ordering::Relaxed);
             second
         },
         || {
             let first = run::<f64>(rod, merged_at(config, p0, l0, max));
-            let twin = run_unless(&twin_rod, merged_at(config, p1, l1, max), &twin_needless);
-            (first, twin)
+            let twin = first
+                .is_ok()
+                .then(|| run_unless(&twin_rod, merged_at(config, p1, l1, max), &twin_needless));
+            (first, twin.flatten())
         },
     );
-    let (first, second) = (first?, second?);
-    let mut used = 0;
-    let mut levels = Vec::new();
-    for (fine, (p, l)) in [(&first, (p0, l0)), (&second, (p1, l1))] {
-        used += fine.steps();
-        levels.push(fine.restitution());
-        observe(LadderProgress::LevelDone {
-            level: levels.len(),
-            per_transit: p,
-            restitution: fine.restitution(),
-            bound: merge_check(&levels, 0.0, p, l, used).bound,
-            work: used,
-        });
-    }
+    let first = first?;
+    let mut levels = vec![first.restitution()];
+    let mut used = first.steps();
+    observe(LadderProgress::LevelDone {
+        level: 1,
+        per_transit: p0,
+        restitution: first.restitution(),
+        bound: 0.0,
+        work: used,
+    });
+    let second = second?;
+    used += second.steps();
+    levels.push(second.restitution());
     // a twin that was not needed is dropped, finished or not, failed or
     // not (how far it got depends on the threads' timing)
-    let twin = if too_long(second.steps()) {
-        twin.transpose()?.map(Box::new)
+    let twin = if too_long(&second) {
+        twin.transpose()?
     } else {
         None
     };
-    let mut coarser = Some(Coarser::Twinless {
+    let perturbed = twin
+        .as_ref()
+        .map_or(0.0, |t| (second.restitution() - t.restitution()).abs());
+    observe(LadderProgress::LevelDone {
+        level: 2,
+        per_transit: p1,
+        restitution: second.restitution(),
+        bound: merge_check(&levels, perturbed, p1, l1, used).bound,
+        work: used,
+    });
+    let reported = too_long(&second).then(|| past_the_limit(2 * second.steps(), max, 2));
+    let second = Coarser::Twinless {
         engine: second,
-        twin,
+        twin: twin.map(Box::new),
         levels: levels.clone(),
         lattice: (p1, l1),
         used,
-    });
-    let (mut p, mut l) = (p1 / 2.0, l1 / 2.0);
-    if let Some(c) = coarser.take_if(|c| too_long(c.engine().steps())) {
-        let note = past_the_limit(2 * c.engine().steps(), max, levels.len());
-        return c.checked(&twin_rod, config, max, &note);
+    };
+    if let Some(note) = reported {
+        return second.checked(&twin_rod, config, max, &note);
     }
+    let mut coarser = second;
+    let (mut p, mut l) = (p1 / 2.0, l1 / 2.0);
     loop {
         let (fine, twin) = rayon::join(
             || run::<f64>(rod, merged_at(config, p, l, max)),
             || run::<f64>(&twin_rod, merged_at(config, p, l, max)),
         );
-        let (fine, twin) = match (fine, twin, coarser) {
-            (Ok(fine), Ok(twin), _) => (fine, twin),
+        let (fine, twin) = match (fine, twin) {
+            (Ok(fine), Ok(twin)) => (fine, twin),
             // a level past --max-events: the finest level that finished is
-            // reported, if it was checked against a coarser one (every
-            // scene finishes), and the method says on how little
-            (Err(WaveError::EventLimit { .. }), _, Some(c))
-            | (_, Err(WaveError::EventLimit { .. }), Some(c))
-                if levels.len() >= 2 =>
-            {
+            // reported (every scene finishes), and the method says on how
+            // little
+            (Err(WaveError::EventLimit { .. }), _) | (_, Err(WaveError::EventLimit { .. })) => {
                 let note = format!(
                     "; the next level did not finish within {max} events, so the estimate rests on {} levels",
                     levels.len()
                 );
-                return c.checked(&twin_rod, config, max, &note);
+                return coarser.checked(&twin_rod, config, max, &note);
             }
-            (Err(e), _, _) | (_, Err(e), _) => return Err(e),
+            (Err(e), _) | (_, Err(e)) => return Err(e),
         };
         used += fine.steps() + twin.steps();
         levels.push(fine.restitution());
@@ -246,21 +256,18 @@ pub(crate) fn ladder(
         });
         // events about double with each halving
         let next_cost = 2 * (fine.steps() + twin.steps());
-        let enough = levels.len() >= MIN_LEVELS;
-        let done =
-            enough && (check.bound <= target || used + next_cost > budget) || p / 2.0 < FINEST;
+        let done = check.bound <= target || used + next_cost > budget || p / 2.0 < FINEST;
         if done {
             return Ok((fine, check));
         }
-        let longest = fine.steps().max(twin.steps());
-        if too_long(longest) {
+        if too_long(&fine) {
             let mut check = check;
             check
                 .method
-                .push_str(&past_the_limit(2 * longest, max, levels.len()));
+                .push_str(&past_the_limit(2 * fine.steps(), max, levels.len()));
             return Ok((fine, check));
         }
-        coarser = Some(Coarser::Checked(fine, check));
+        coarser = Coarser::Checked(fine, check);
         p /= 2.0;
         l /= 2.0;
     }
@@ -291,12 +298,6 @@ enum Coarser {
 }
 
 impl Coarser {
-    fn engine(&self) -> &WaveEngine {
-        match self {
-            Coarser::Checked(engine, _) | Coarser::Twinless { engine, .. } => engine,
-        }
-    }
-
     /// The level reported, its check completed by its twin if it has none
     /// yet, and `note` (why the ladder stopped) added to its method.
     fn checked(

@@ -530,7 +530,7 @@ fn a_ladder_reports_each_level_and_the_last_is_the_outcome() {
 /// runs of the engine alone.
 #[test]
 fn a_ladder_reports_what_its_levels_run_alone_give() {
-    use impact_wave::{LadderProgress, WaveEngine, solve_observed};
+    use impact_wave::{LadderProgress, solve_observed};
     use std::cell::RefCell;
     let rod = survey_rod_0();
     let seen = RefCell::new(Vec::new());
@@ -543,18 +543,7 @@ fn a_ladder_reports_what_its_levels_run_alone_give() {
     .outcome;
     let reported = seen.into_inner();
     assert!(reported.len() >= 3, "{reported:?}");
-    let alone = |rod: &impact_model::Rod, k: usize| {
-        let f = 0.5f64.powi(k as i32);
-        let config = WaveConfig {
-            resolution: Resolution::Merged {
-                per_transit: 0.2 * f,
-                per_longest: 4e-3 * f,
-            },
-            ..WaveConfig::default()
-        };
-        let mut engine = WaveEngine::new(rod, config).unwrap();
-        engine.run().unwrap().restitution
-    };
+    let alone = |rod: &impact_model::Rod, k: usize| ladder_level(rod, k).0;
     let levels: Vec<f64> = (0..reported.len()).map(|k| alone(&rod, k)).collect();
     assert_eq!(levels, reported);
     let finest = levels[levels.len() - 1];
@@ -574,4 +563,58 @@ fn a_ladder_reports_what_its_levels_run_alone_give() {
         .unwrap();
     let alone = pool.install(|| simulate(&rod, &WaveConfig::default()).unwrap());
     assert_eq!(alone, outcome);
+}
+
+/// A ladder whose third level runs into `max_events` although the second
+/// took less than half of it reports the second, its twin run only then:
+/// the same `e` and bound as that level and its twin run alone give, the
+/// same on one thread as on two.
+#[test]
+fn a_ladder_whose_third_level_runs_into_the_limit_reports_the_second_checked() {
+    let rod = survey_rod_0();
+    let alone = ladder_level;
+    let (e1, _) = alone(&rod, 0);
+    let (e2, second) = alone(&rod, 1);
+    let (_, third) = alone(&rod, 2);
+    // the limit the second level fits in twice, the third not
+    let limit = 2 * second;
+    assert!(third > limit, "{third} {limit}");
+    let config = WaveConfig {
+        max_events: limit,
+        ..WaveConfig::default()
+    };
+    let short = simulate(&rod, &config).unwrap();
+    let method = &short.error_estimate.as_ref().unwrap().method;
+    assert!(
+        method.contains(&format!("did not finish within {limit} events"))
+            && method.contains("rests on 2 levels"),
+        "{method}"
+    );
+    assert_eq!(short.restitution, e2);
+    let mut scene = rod.scene().clone();
+    scene.layers[0].modulus *= 1.0 + 1e-12;
+    let (twin, _) = alone(&scene.validate().unwrap(), 1);
+    let bound = 2.0 * (e2 - e1).abs().max((e2 - twin).abs());
+    assert_eq!(short.error_estimate.as_ref().unwrap().merged, bound);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    assert_eq!(pool.install(|| simulate(&rod, &config).unwrap()), short);
+}
+
+/// The `k`-th level of a default ladder (0 the coarsest) run alone: its
+/// `e` and its work.
+fn ladder_level(rod: &impact_model::Rod, k: usize) -> (f64, u64) {
+    let f = 0.5f64.powi(k as i32);
+    let config = WaveConfig {
+        resolution: Resolution::Merged {
+            per_transit: 0.2 * f,
+            per_longest: 4e-3 * f,
+        },
+        ..WaveConfig::default()
+    };
+    let mut engine = impact_wave::WaveEngine::new(rod, config).unwrap();
+    let e = engine.run().unwrap().restitution;
+    (e, engine.steps())
 }
