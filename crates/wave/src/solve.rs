@@ -84,9 +84,9 @@ pub enum LadderProgress {
         /// Its `e`.
         restitution: f64,
         /// The bound its comparisons give (two levels at least; the
-        /// refinement's part alone for the levels run before the third,
-        /// which have no twin; the reported bound is set when the ladder
-        /// stops).
+        /// refinement's part alone for a level run without its twin, the
+        /// second unless it is reported; the reported bound is set when
+        /// the ladder stops).
         bound: f64,
         /// Work done so far (loop iterations, and leaps' fronts and cells).
         work: u64,
