@@ -167,6 +167,8 @@ pub struct Tracer<R: Real> {
     pub(crate) ln_memo: Option<(R, R)>,
     /// One lane's deposits as a leap places them, kept for the next.
     pub(crate) batch: Vec<(R, R)>,
+    /// The buffers of a leap's trains deposited together, kept for the next.
+    pub(crate) together: crate::leap::TogetherRoom<R>,
     /// Fronts a lane merges as a leap places them, kept for the next.
     pub(crate) spare_fronts: Vec<crate::lane::Front<R>>,
     pub(crate) next_id: u32,

@@ -51,6 +51,7 @@ use arrivals::Taken;
 use crossing::{count_before, pow_small};
 pub(crate) use exact::ExactTrains;
 pub(crate) use scratch::LeapScratch;
+pub(crate) use scratch::TogetherRoom;
 
 /// A layer leaps only where its neighbours' round trips are at least this
 /// many of its transits (what a leap sends them would come back too

@@ -11,7 +11,7 @@
 
 use crate::engine::Tracer;
 use crate::lane::{Front, Lane};
-use crate::leap::{ExactTrains, LeapScratch};
+use crate::leap::{ExactTrains, LeapScratch, TogetherRoom};
 use crate::real::Real;
 use std::any::Any;
 use std::cell::RefCell;
@@ -27,6 +27,7 @@ pub(crate) struct Room<R> {
     pub(crate) exact_trains: ExactTrains<R>,
     pub(crate) scratch: LeapScratch<R>,
     pub(crate) batch: Vec<(R, R)>,
+    pub(crate) together: TogetherRoom<R>,
     pub(crate) spare_fronts: Vec<Front<R>>,
 }
 
@@ -38,6 +39,7 @@ impl<R: Real> Room<R> {
             + self.exact_trains.bytes()
             + self.scratch.bytes()
             + vec_bytes(&self.batch)
+            + self.together.bytes()
             + vec_bytes(&self.spare_fronts)
     }
 }
@@ -101,6 +103,7 @@ impl<R: Real> Tracer<R> {
             exact_trains,
             scratch: take(&mut self.scratch).emptied(),
             batch,
+            together: take(&mut self.together).emptied(),
             spare_fronts,
         }
     }

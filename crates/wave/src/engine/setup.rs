@@ -188,6 +188,7 @@ impl<R: Real> Tracer<R> {
             scratch: room.scratch,
             ln_memo: None,
             batch: room.batch,
+            together: room.together,
             spare_fronts: room.spare_fronts,
             next_id: 0,
             now: R::zero(),

@@ -155,6 +155,10 @@ impl<R: Real> Lane<R> {
     /// holds two unkept fronts born together, so the older ones would come
     /// through a merge unchanged; asserted in debug builds). Rebuilding the
     /// whole lane each time cost a copy of a thousand fronts per leap.
+    /// (The deposits are born on lattice points `k w`, so a counting sort
+    /// by `k` gives the stable sort's order; it was tried and took 7 % more
+    /// instructions on survey rod 22: a leap's batches are short runs
+    /// already in order, which the library's sort merges cheaply.)
     pub fn place_all(&mut self, deposits: &mut [(R, R)], spare: &mut Vec<Front<R>>) {
         if deposits.is_empty() {
             return;

@@ -32,6 +32,7 @@
 //! exactly once because the count the formula used is where they start.
 
 use super::Train;
+use super::scratch::{TogetherRoom, Work};
 use crate::engine::Tracer;
 use crate::error::WaveError;
 use crate::geometric::sums;
@@ -44,7 +45,7 @@ const TOGETHER_FROM: usize = 4;
 
 /// A train taken together.
 #[derive(Debug, Clone, Copy)]
-struct Member<R> {
+pub(super) struct Member<R> {
     start: R,
     c: R,
     count: u64,
@@ -123,16 +124,17 @@ impl<R: Real> Remembered<R> {
     }
 }
 
-/// Prefix sums of `(c~, c~ r)` over trains ranked by `r`, as they start.
-struct Fenwick<R> {
-    tree: Vec<(R, R)>,
+/// Prefix sums of `(c~, c~ r)` over trains ranked by `r`, as they start
+/// (in a vector kept from one leap to the next).
+struct Fenwick<'a, R> {
+    tree: &'a mut Vec<(R, R)>,
 }
 
-impl<R: Real> Fenwick<R> {
-    fn new(m: usize) -> Self {
-        Self {
-            tree: vec![(R::zero(), R::zero()); m + 1],
-        }
+impl<'a, R: Real> Fenwick<'a, R> {
+    fn new(m: usize, tree: &'a mut Vec<(R, R)>) -> Self {
+        tree.clear();
+        tree.resize(m + 1, (R::zero(), R::zero()));
+        Self { tree }
     }
 
     fn add(&mut self, rank: usize, v: (R, R)) {
@@ -175,18 +177,25 @@ impl<R: Real> Tracer<R> {
     }
 
     /// The held trains, lane by lane (a leap feeds two lanes at most).
+    /// Lanes in increasing order, each lane's trains in the order they
+    /// were held (what a stable sort by lane gives, without the sort).
     pub(super) fn emit_held(&mut self, held: &mut Vec<(usize, Train<R>)>) -> Result<(), WaveError> {
-        held.sort_by_key(|h| h.0);
-        let mut rest = &held[..];
-        let mut group = Vec::new();
-        while let Some(&(lane, _)) = rest.first() {
-            let len = rest.iter().take_while(|h| h.0 == lane).count();
+        let mut room = std::mem::take(&mut self.together);
+        room.lanes.clear();
+        for &(lane, _) in held.iter() {
+            if !room.lanes.contains(&lane) {
+                room.lanes.push(lane);
+            }
+        }
+        room.lanes.sort_unstable();
+        let TogetherRoom { lanes, group, work } = &mut room;
+        for &lane in lanes.iter() {
             group.clear();
-            group.extend(rest[..len].iter().map(|h| h.1));
-            rest = &rest[len..];
-            self.emit_ringing(lane, &group)?;
+            group.extend(held.iter().filter(|h| h.0 == lane).map(|h| h.1));
+            self.emit_ringing(lane, group, work)?;
         }
         held.clear();
+        self.together = room;
         Ok(())
     }
 
@@ -196,6 +205,7 @@ impl<R: Real> Tracer<R> {
         &mut self,
         lane: usize,
         trains: &[Train<R>],
+        work: &mut Work<R>,
     ) -> Result<(), WaveError> {
         let MergeRule::Lattice {
             spacing: w,
@@ -222,7 +232,10 @@ impl<R: Real> Tracer<R> {
         for &t in trains.iter().filter(|t| !same(t)) {
             self.emit(lane, t)?;
         }
-        let trains: Vec<Train<R>> = trains.iter().copied().filter(same).collect();
+        work.same.clear();
+        work.same.extend(trains.iter().copied().filter(same));
+        let Work { same, members, .. } = work;
+        let trains = &same[..];
         let first = &trains[0];
         let b = trains
             .iter()
@@ -233,8 +246,8 @@ impl<R: Real> Tracer<R> {
             .iter()
             .map(last)
             .fold(last(first), |m, s| if s > m { s } else { m });
-        let mut members = Vec::with_capacity(trains.len());
-        for t in trains {
+        members.clear();
+        for &t in trains {
             let d = t.start - b;
             let k0 = (d / period).floor().to_f64().max(0.0) as u64;
             let qk = pow(q, k0);
@@ -255,20 +268,28 @@ impl<R: Real> Tracer<R> {
                 scaled: t.c / qk,
             });
         }
-        self.deposit_together(lane, &mut members, b, period, q, w)
+        self.deposit_together(lane, work, b, period, q, w)
     }
 
-    /// The deposits of `members` (trains of period `period` and ratio `q`
-    /// starting from `b`) on the lattice of spacing `w` of `lane`.
+    /// The deposits of `work.members` (trains of period `period` and ratio
+    /// `q` starting from `b`) on the lattice of spacing `w` of `lane`.
     fn deposit_together(
         &mut self,
         lane: usize,
-        members: &mut [Member<R>],
+        work: &mut Work<R>,
         b: R,
         period: R,
         q: R,
         w: R,
     ) -> Result<(), WaveError> {
+        let Work {
+            members,
+            by_r,
+            rank,
+            sorted_r,
+            tree,
+            ..
+        } = work;
         if members.is_empty() {
             return Ok(());
         }
@@ -279,13 +300,16 @@ impl<R: Real> Tracer<R> {
                 .unwrap_or(std::cmp::Ordering::Equal)
         });
         // ranks by r
-        let mut by_r: Vec<(R, usize)> = members.iter().enumerate().map(|(k, p)| (p.r, k)).collect();
+        by_r.clear();
+        by_r.extend(members.iter().enumerate().map(|(k, p)| (p.r, k)));
         by_r.sort_by(|x, y| x.0.partial_cmp(&y.0).unwrap_or(std::cmp::Ordering::Equal));
-        let mut rank = vec![0; m];
+        rank.clear();
+        rank.resize(m, 0);
         for (at, &(_, k)) in by_r.iter().enumerate() {
             rank[k] = at;
         }
-        let sorted_r: Vec<R> = by_r.iter().map(|x| x.0).collect();
+        sorted_r.clear();
+        sorted_r.extend(by_r.iter().map(|x| x.0));
         // the formula's lattice points: after the earliest start, up to the
         // earliest last birth
         let earliest_last = members
@@ -294,7 +318,7 @@ impl<R: Real> Tracer<R> {
             .fold(-R::neg_infinity(), |a, s| if s < a { s } else { a });
         let j_lo = (b / w).floor();
         let j_cut = (earliest_last / w).floor();
-        let mut tree = Fenwick::new(m);
+        let mut tree = Fenwick::new(m, tree);
         let mut g = Geometric::new(q);
         let (mut total_c, mut total_cr) = (R::zero(), R::zero());
         let (mut off_jump, mut off_moment) = (R::zero(), R::zero());
@@ -481,7 +505,9 @@ mod tests {
                 one.emit(lane, t).unwrap();
             }
             let mut together = base.clone();
-            together.emit_ringing(lane, &trains).unwrap();
+            together
+                .emit_ringing(lane, &trains, &mut Work::default())
+                .unwrap();
             // (where the trains die under the drop threshold within the
             // window they all go one by one)
             assert!(together.deposits.len() <= one.deposits.len());
