@@ -48,7 +48,7 @@ mod trains;
 mod wall;
 
 use arrivals::Taken;
-use crossing::{count_before, pow_small};
+use crossing::{count_before_near, pow_small};
 pub(crate) use exact::ExactTrains;
 pub(crate) use scratch::LeapScratch;
 pub(crate) use scratch::TogetherRoom;
@@ -307,6 +307,7 @@ impl<R: Real> Tracer<R> {
         bottom_arrivals.clear();
         ringing.clear();
         let (mut up_sum, mut down_sum) = (taken.up, taken.down);
+        let mut last_within = 0;
         for p in phases.iter() {
             // the pending arrival at the top of a front going up
             if let Some((u, d)) = p.top {
@@ -334,7 +335,10 @@ impl<R: Real> Tracer<R> {
                 down_sum += p.amp;
             }
             // round trips: bottom arrivals k < nb, top arrivals k < nt
-            let within = count_before(p.tau, period, horizon);
+            // (phases start within a period of one another: their counts
+            // differ by one at most)
+            let within = count_before_near(p.tau, period, horizon, last_within);
+            last_within = within;
             let life_down = self.life_within(p.amp, q, thr, 1, within);
             let life_up = self.life_within(ends.bottom * p.amp, q, thr, 0, within);
             let nb = within.min(life_down).min(life_up + 1);
@@ -342,7 +346,7 @@ impl<R: Real> Tracer<R> {
                 fronts_down.push(self.front(p.tau - ti, p.amp));
                 continue;
             }
-            let nt = count_before(p.tau + ti, period, horizon)
+            let nt = count_before_near(p.tau + ti, period, horizon, within)
                 .min(nb)
                 .min(life_up);
             events += nb + nt;

@@ -182,9 +182,29 @@ pub(super) fn count_before<R: Real>(start: R, period: R, end: R) -> u64 {
     n
 }
 
+/// [`count_before`] searched from `guess` (its count for a neighbouring
+/// start: the previous cell's, the previous phase's), without the
+/// division: the count is the first `n` with `start + n period >= end`,
+/// and the sum grows with `n`, so both searches end at it wherever they
+/// start. A guess of 0 (none) counts as [`count_before`] does.
+#[inline(always)]
+pub(super) fn count_before_near<R: Real>(start: R, period: R, end: R, guess: u64) -> u64 {
+    if guess == 0 || start >= end {
+        return count_before(start, period, end);
+    }
+    let mut n = guess;
+    while n > 0 && start + R::of((n - 1) as f64) * period >= end {
+        n -= 1;
+    }
+    while start + R::of(n as f64) * period < end {
+        n += 1;
+    }
+    n
+}
+
 #[cfg(test)]
 mod tests {
-    use super::count_before;
+    use super::{count_before, count_before_near};
 
     /// The count by brute force: the first `n` whose `start + n period`, as
     /// computed, is at or past `end` (the sum grows with `n`).
@@ -214,11 +234,28 @@ mod tests {
                         at + 0.5 * period,
                         start - period,
                     ] {
+                        let want = counted(start, period, end);
                         assert_eq!(
                             count_before(start, period, end),
-                            counted(start, period, end),
+                            want,
                             "start {start}, period {period}, end {end}"
                         );
+                        // from any guess, near or far
+                        for guess in [
+                            0,
+                            1,
+                            2,
+                            want.saturating_sub(1),
+                            want,
+                            want + 1,
+                            3 * want + 7,
+                        ] {
+                            assert_eq!(
+                                count_before_near(start, period, end, guess),
+                                want,
+                                "start {start}, period {period}, end {end}, guess {guess}"
+                            );
+                        }
                         checked += 1;
                     }
                 }

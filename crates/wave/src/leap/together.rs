@@ -37,7 +37,7 @@ use crate::engine::Tracer;
 use crate::error::WaveError;
 use crate::geometric::sums;
 use crate::lane::{Direction, MergeRule};
-use crate::leap::crossing::{count_before, pow};
+use crate::leap::crossing::{count_before_near, pow};
 use crate::real::Real;
 
 /// Fewer trains than this go one by one (sorting and the tree cost more).
@@ -384,11 +384,12 @@ impl<R: Real> Tracer<R> {
             // cell by cell in closed form, as `emit` does
             let mut i = from;
             let mut amp = p.c * pow(q, from);
+            let mut n = 0;
             while i < p.count {
                 let born = p.start + R::of(i as f64) * period;
                 let cell = (born / w).floor();
                 let (lo, hi) = (cell * w, (cell + R::one()) * w);
-                let n = count_before(born, period, hi).clamp(1, p.count - i);
+                n = count_before_near(born, period, hi, n).clamp(1, p.count - i);
                 let (s0, s1, qn) = tail_sums.get(q, n);
                 let jump = amp * s0;
                 let at_hi = amp * ((born - lo) * s0 + period * s1) / w;

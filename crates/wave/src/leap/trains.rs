@@ -4,7 +4,7 @@
 //! foreseen, spawned front by front in birth order.
 
 use super::Train;
-use super::crossing::{count_before, pow};
+use super::crossing::{count_before_near, pow};
 use super::exact::Placed;
 use crate::engine::Tracer;
 use crate::error::WaveError;
@@ -210,14 +210,16 @@ impl<R: Real> Tracer<R> {
         // full cells hold one or two counts of fronts: their sums repeat;
         // the amplitude at a cell's first front follows by q^len
         let mut first = amp(k);
+        let mut len = 0;
         while k < alive {
             // the fronts born in one lattice cell [j w, (j + 1) w)
             let j = (born(k) / spacing).floor();
             let (lo, hi) = (j * spacing, (j + R::one()) * spacing);
-            let end = (k + count_before(born(k), train.period, hi))
+            // (a cell's count is the one before's, or one more or less)
+            let end = (k + count_before_near(born(k), train.period, hi, len))
                 .min(alive)
                 .max(k + 1);
-            let len = end - k;
+            len = end - k;
             self.leap_work += 1;
             let (s0, s1, _) = self.sums_cached(train.q, len);
             let step = self.sums_cached(train.q, len + 1).0 - s0; // q^len
