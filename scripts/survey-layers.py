@@ -15,6 +15,12 @@ over 1 s, and how many did not finish within --timeout.
     python3 scripts/survey-layers.py --rods 100 --seed 1 --timeout 120
     IMPACT=path/to/impact python3 scripts/survey-layers.py
     python3 scripts/survey-layers.py --keep rods/    # keep the scenes (rodNNN.json)
+    python3 scripts/survey-layers.py --exact-events 8e6   # merged bounds against exact runs
+
+With --exact-events N, each rod whose default run merged fronts is run again
+exactly (`--resolution exact --max-events N`); where that finishes, the line
+adds the exact `e` and how far the merged `e` is from it in units of its
+bound, and the summary says whether every such bound held (exit 1 if not).
 
 Not run by CI (minutes, and timings). Needs only Python 3 and the binary
 (cargo builds it when target/release/impact is missing).
@@ -57,11 +63,14 @@ def main():
     parser.add_argument("--speeds", type=float, default=6.0,
                         help="decades of wave speed, and the largest transit ratio's (default 6)")
     parser.add_argument("--timeout", type=float, default=60.0, help="seconds per rod (default 60)")
+    parser.add_argument("--exact-events", type=float, default=0, metavar="N",
+                        help="check merged rods against exact runs of at most N events (default: no check)")
     parser.add_argument("--keep", type=Path, metavar="DIR",
                         help="write each rod's scene to DIR/rodNNN.json (to rerun one alone)")
     args = parser.parse_args()
-    if args.rods < 1 or args.timeout <= 0 or not 0 < args.speeds <= 12:
-        print("error: --rods >= 1, --timeout > 0, --speeds in (0, 12]", file=sys.stderr)
+    if args.rods < 1 or args.timeout <= 0 or not 0 < args.speeds <= 12 or not 0 <= args.exact_events < 1e15:
+        print("error: --rods >= 1, --timeout > 0, --speeds in (0, 12], --exact-events in [0, 1e15)",
+              file=sys.stderr)
         return 2
 
     impact = os.environ.get("IMPACT") or str(ROOT / "target/release/impact")
@@ -71,6 +80,7 @@ def main():
 
     rng = random.Random(args.seed)
     times, unfinished, failed = [], 0, 0
+    checked, held, closest = 0, 0, 0.0
     print(f"rod  layers  ratio      seconds       events  e             bound")
     with tempfile.TemporaryDirectory(prefix="impact-survey-") as work:
         for k in range(args.rods):
@@ -98,8 +108,23 @@ def main():
                 continue
             times.append(seconds)
             out = json.loads(run.stdout)
+            exact = ""
+            if args.exact_events and out["truncation"]["merged_fronts"] > 0:
+                ref = subprocess.run([impact, "run", str(path), "--json", "--resolution", "exact",
+                                      "--max-events", str(int(args.exact_events))],
+                                     capture_output=True, text=True)
+                if ref.returncode == 0:
+                    x = json.loads(ref.stdout)
+                    d = abs(out["restitution"] - x["restitution"])
+                    share = d / out["error_bound"] if out["error_bound"] > 0 else math.inf
+                    checked += 1
+                    held += d <= out["error_bound"] + x["error_bound"]
+                    closest = max(closest, share)
+                    exact = f"  exact {x['restitution']:.10f}, off by {share:.2f} of the bound"
+                else:
+                    exact = f"  (exact run over {args.exact_events:.0e} events)"
             print(f"{k:3d}  {len(transits):6d}  {ratio:9.1e}  {seconds:7.2f}  {out['events']:11d}  "
-                  f"{out['restitution']:.10f}  {out['error_bound']:.1e}", flush=True)
+                  f"{out['restitution']:.10f}  {out['error_bound']:.1e}{exact}", flush=True)
     times.sort()
     over = sum(t > 1.0 for t in times)
     p90 = times[min(len(times) - 1, int(0.9 * len(times)))] if times else float("nan")
@@ -107,7 +132,11 @@ def main():
           f"that finished: median {statistics.median(times) if times else float('nan'):.2f} s, "
           f"90th percentile {p90:.2f} s, largest finished {max(times) if times else float('nan'):.2f} s; "
           f"{over} over 1 s, {unfinished} not finished within {args.timeout:g} s, {failed} failed")
-    return 1 if failed else 0
+    if args.exact_events:
+        print(f"merged rods run exactly within {args.exact_events:.0e} events: {checked}; "
+              f"within their bound: {held} of {checked}"
+              + (f" (the closest at {closest:.2f} of its bound)" if checked else ""))
+    return 1 if failed or held < checked else 0
 
 
 if __name__ == "__main__":

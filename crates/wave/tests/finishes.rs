@@ -85,7 +85,7 @@ fn random_layered_rods_finish_within_their_bound() {
 /// transit-time ratios of the layer survey, `scripts/survey-layers.py`, up
 /// to `1e6`): two to four layers, so that the exact run fits often enough
 /// to check merged bounds. The survey's merged rods that an exact run
-/// could check held their bounds (10 of 80, at most 0.36 of the bound),
+/// could check held their bounds (10 of 80, at most 0.35 of the bound),
 /// but none of them ran in a test.
 #[test]
 fn wide_contrast_rods_finish_within_their_bound() {
