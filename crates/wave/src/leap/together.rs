@@ -223,7 +223,11 @@ impl<R: Real> Tracer<R> {
         let thr = self.layers[layer].drop_strain();
         let same =
             |t: &Train<R>| t.q == q && t.period == period && t.count >= 2 && t.c != R::zero();
-        if q == R::zero() || trains.iter().filter(|t| same(t)).count() < TOGETHER_FROM {
+        work.same.clear();
+        if q != R::zero() {
+            work.same.extend(trains.iter().copied().filter(same));
+        }
+        if work.same.len() < TOGETHER_FROM {
             for &t in trains {
                 self.emit(lane, t)?;
             }
@@ -232,8 +236,6 @@ impl<R: Real> Tracer<R> {
         for &t in trains.iter().filter(|t| !same(t)) {
             self.emit(lane, t)?;
         }
-        work.same.clear();
-        work.same.extend(trains.iter().copied().filter(same));
         let Work { same, members, .. } = work;
         let trains = &same[..];
         let first = &trains[0];
