@@ -21,6 +21,8 @@ fn main() {
             Resolution::Exact
         },
         leap_quiet_layers: args.get(4).is_none_or(|s| s != "noleap"),
+        // `BLOCKS=1`: blocks of fast layers answered by their response
+        fast_blocks: std::env::var_os("BLOCKS").is_some(),
         ..WaveConfig::default()
     };
     let mut engine = WaveEngine::new(&rod, config).expect("a valid rod");
@@ -45,6 +47,11 @@ fn main() {
         start.elapsed().as_secs_f64(),
         engine.steps(),
         engine.restitution()
+    );
+    let o = engine.outcome();
+    println!(
+        "contacts {:?}, end {:.4}, stop {:?}",
+        o.contacts, o.end_time, o.stop_reason
     );
     println!("boundary events (0 wall, {n} top): {at:?}");
     println!("leaps per layer: {leaps:?}\nevents leapt per layer: {leapt:?}");

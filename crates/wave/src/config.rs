@@ -156,6 +156,13 @@ pub struct WaveConfig {
     /// layer between two lattices then leaps a neighbour's transit, not a
     /// lattice cell. Default [`LeapArrivals::Merged`].
     pub leap_arrivals: LeapArrivals,
+    /// Answer blocks of fast layers by their response (`block.rs`, merged
+    /// runs only): two or more adjacent layers above the bottom, each at
+    /// most an eighth of the transit of the layers just outside, are traced
+    /// once, and each front arriving at the block adds the block's
+    /// response to what it sends its neighbours. Off: the loop takes every
+    /// boundary event inside the block.
+    pub fast_blocks: bool,
 }
 
 /// Which leaps take in their neighbours' arrivals (see
@@ -188,6 +195,7 @@ impl Default for WaveConfig {
             record: Record::default(),
             leap_quiet_layers: true,
             leap_arrivals: LeapArrivals::Merged,
+            fast_blocks: true,
         }
     }
 }

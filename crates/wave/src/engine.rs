@@ -171,6 +171,8 @@ pub struct Tracer<R: Real> {
     pub(crate) together: crate::leap::TogetherRoom<R>,
     /// Fronts a lane merges as a leap places them, kept for the next.
     pub(crate) spare_fronts: Vec<crate::lane::Front<R>>,
+    /// Blocks of fast layers answered by their response (`block.rs`).
+    pub(crate) blocks: crate::block::Blocks<R>,
     pub(crate) next_id: u32,
     pub(crate) now: R,
     stopped: Option<StopReason>,
@@ -194,7 +196,7 @@ impl<R: Real> Tracer<R> {
     /// calls (saved registers, spilled arguments) were a quarter of an
     /// event's instructions at the hard corner (callgrind).
     #[inline(always)]
-    fn spawn(
+    pub(crate) fn spawn(
         &mut self,
         layer: usize,
         dir: Direction,
@@ -380,6 +382,9 @@ impl<R: Real> Tracer<R> {
                     self.events -= 1;
                     self.leap_work += 1;
                     StepKind::Leap { layer, events }
+                } else if let Some(&Some((bi, o))) = self.blocks.key_of.get(layer) {
+                    // a block layer's key: its port's deliveries
+                    self.block_delivery(bi, o)?
                 } else {
                     // a layer is in the queue exactly while one of its lanes
                     // holds a front (spawn, take_head and leaps keep it so)
@@ -510,6 +515,9 @@ impl<R: Real> Tracer<R> {
             self.spawn(n - 1, Direction::Down, t, -from_below, parents)?;
             Ok(StepKind::Top)
         } else {
+            if let Some(&Some(port)) = self.blocks.port_at.get(b) {
+                return self.block_boundary(b, t, (from_below, from_above), port, parents);
+            }
             let k = self.interfaces[b - 1];
             let down = k.up_reflected * from_below + k.down_transmitted * from_above;
             let up = k.up_transmitted * from_below + k.down_reflected * from_above;

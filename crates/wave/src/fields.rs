@@ -167,7 +167,9 @@ impl<R: Real> Tracer<R> {
     }
 
     /// Energy and momentum of the rod now, from the fronts, in the scene's
-    /// units.
+    /// units. A merged run's blocks of fast layers (`WaveConfig::fast_blocks`)
+    /// hold their fronts inside their response, which these totals leave
+    /// out ([`Tracer::answered_blocks`] says which).
     pub fn field_totals(&self) -> FieldTotals {
         let s = self.field_state();
         let u = &self.units;

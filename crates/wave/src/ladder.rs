@@ -32,7 +32,7 @@ pub(crate) struct MergeCheck {
 /// slow lanes fifty times finer than their own transit-relative share,
 /// because coarse slow lattices cost accuracy where large fronts return
 /// (measured at the paper's hard corner).
-const LADDER_START: (f64, f64) = (0.2, 4e-3);
+pub(crate) const LADDER_START: (f64, f64) = (0.2, 4e-3);
 
 /// Levels a ladder needs before its estimate is trusted: two comparisons.
 const MIN_LEVELS: usize = 3;

@@ -435,9 +435,40 @@ impl<R: Real> Tracer<R> {
             if !towards {
                 at += transit(j);
             }
+            if self.blocks.answers(
+                i,
+                j,
+                if lane.folded {
+                    Direction::Down
+                } else {
+                    lane.direction
+                },
+            ) {
+                at -= self.blocks.margin;
+            }
             earliest = earlier(earliest, at);
             if !(taking && towards && j.abs_diff(i) == 1) {
                 others = earlier(others, at);
+            }
+        }
+        // a block's ports may deliver from a little before now on (an
+        // arrival and its response are each split onto the port's
+        // lattice), and whatever passes a block may come out that much
+        // earlier than the layers' transits say (`block.rs`)
+        if !self.blocks.list.is_empty() {
+            let margin = self.blocks.margin;
+            for block in &self.blocks.list {
+                for port in &block.ports {
+                    let (j, dir) = port.out;
+                    let towards = (dir == Direction::Up) == (j < i);
+                    let between = if j < i { j + 1..i } else { i + 1..j };
+                    let mut at = between.fold(self.now + transit(j), |at, m| at + transit(m));
+                    if !towards {
+                        at += transit(j);
+                    }
+                    earliest = earlier(earliest, at - margin);
+                    others = earlier(others, at - margin);
+                }
             }
         }
         // a landing bottom starts a front at the wall (its other fronts

@@ -16,6 +16,7 @@
 
 #![warn(missing_docs)]
 
+mod block;
 mod config;
 mod convergence;
 mod engine;

@@ -149,6 +149,11 @@ pub fn solve_observed(
         estimate.merged_converging = Some(check.converging);
         estimate.merged_observed_order = check.order;
         parts.push(check.method.clone());
+        for (a, b) in fine.answered_blocks() {
+            parts.push(format!(
+                "layers {a} to {b} answered as a block by their traced response (fast_blocks)"
+            ));
+        }
     }
     let mut outcome = finished(fine.outcome(), &fine)?;
     let decisions = fine.decisions();

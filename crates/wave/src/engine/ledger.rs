@@ -58,6 +58,16 @@ impl<R: Real> Tracer<R> {
         d.dropped_force_time += force * born.to_f64();
     }
 
+    /// Counts what arrivals left in a block beyond its traced response
+    /// (`block/response.rs`): the velocity and force they could carry, and
+    /// the force times their arrival, as for dropped fronts.
+    pub(crate) fn drop_rest(&mut self, velocity: f64, force: f64, force_time: f64) {
+        let d = &mut self.drops;
+        d.truncation.dropped_velocity += velocity / self.impact_speed.to_f64();
+        d.dropped_force += force;
+        d.dropped_force_time += force_time;
+    }
+
     /// Records a new front (only when fronts are recorded).
     #[cold]
     pub(super) fn record_front(

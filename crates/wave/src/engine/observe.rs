@@ -95,6 +95,16 @@ impl<R: Real> Tracer<R> {
         2.0 * impulse / (self.mass.to_f64() * self.impact_speed.to_f64())
     }
 
+    /// The blocks of fast layers this run answers by their response
+    /// (`WaveConfig::fast_blocks`): the bottom and top layer of each.
+    pub fn answered_blocks(&self) -> Vec<(usize, usize)> {
+        self.blocks
+            .list
+            .iter()
+            .map(|b| (b.lower, b.upper))
+            .collect()
+    }
+
     /// The restitution so far.
     pub fn restitution(&self) -> f64 {
         (self.centre_of_mass_velocity() / self.impact_speed).to_f64()

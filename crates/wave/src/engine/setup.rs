@@ -190,6 +190,7 @@ impl<R: Real> Tracer<R> {
             batch: room.batch,
             together: room.together,
             spare_fronts: room.spare_fronts,
+            blocks: crate::block::Blocks::default(),
             next_id: 0,
             now: R::zero(),
             stopped: None,
@@ -203,6 +204,11 @@ impl<R: Real> Tracer<R> {
                 .queue
                 .schedule(EventKey::Horizon, horizon, R::zero())
                 .map_err(past)?;
+        }
+        // (a recording of fronts shows every front: blocks keep theirs
+        // inside their response)
+        if merged && config.fast_blocks && !config.record.fronts {
+            engine.find_blocks();
         }
         // The impact: the bottom is stopped, v: -v_b -> 0, so d = -v_b / c0.
         let first = -vb / c0;

@@ -1,0 +1,319 @@
+//! Blocks of fast layers, answered by their response (merged runs only).
+//!
+//! A few adjacent layers, each much faster than the slower layers around
+//! them, ring for millions of round trips between those neighbours' events,
+//! and none of them may leap (each one's neighbour is another fast layer,
+//! whose round trip ends a leap). But the block is linear and does not
+//! change in time: a front arriving at one of its ports causes, at each
+//! port, the same fronts whenever it arrives, scaled by its jump. So the
+//! block is traced once per run (`block/response.rs`), and each arrival
+//! adds its response, on the neighbours' lattices, to what the ports will
+//! deliver: `K` multiply-adds per arrival for a response of `K` lattice
+//! points, where the loop spent a million events.
+//!
+//! The block's own boundary events disappear: its lanes stay empty and its
+//! layers' queue keys schedule the ports' deliveries instead. An arrival is
+//! put on the port's lattice as a deposit is (split between the two
+//! nearest points, jump and first moment kept), so the response is first
+//! order in the lattice spacing as the rest of a merged run is, and the
+//! ladder measures it with the rest; the response's few large fronts are
+//! delivered at their exact times (`response.rs`), as a lattice lane keeps
+//! its large fronts where they were born. What the block holds is not in
+//! the lanes: a run with blocks stops on the escape bound from the energy
+//! balance alone, and its fields leave the block out.
+
+use crate::engine::LayerConst;
+use crate::lane::Direction;
+use crate::real::Real;
+use impact_model::InterfaceCoefficients;
+use std::collections::VecDeque;
+
+mod choice;
+mod flow;
+mod response;
+
+pub(crate) use choice::{apart, candidates, pays};
+pub(crate) use response::{Shape, Trace};
+
+/// A traced front's price in a port's multiply-adds (the work counted, see
+/// `flow.rs`): about sixty nanoseconds against one.
+pub(crate) const FRONT_ADDS: u64 = 64;
+
+/// One port: where the block meets a slower neighbour, and the arrivals
+/// whose responses it still delivers into the neighbour's lane.
+#[derive(Debug, Clone)]
+pub(crate) struct Port<R> {
+    /// The boundary it sits at.
+    pub boundary: usize,
+    /// The neighbour's layer and the direction its outputs travel.
+    pub out: (usize, Direction),
+    /// Its lane's lattice spacing.
+    pub spacing: R,
+    /// Arrivals on this port's lattice, per input port: point and jump,
+    /// oldest first.
+    arrivals: Vec<VecDeque<(i64, R)>>,
+    /// The next lattice point to deliver.
+    next: i64,
+    /// Fronts to deliver at their exact times (the responses' large
+    /// fronts, see `response.rs`): born, jump; in time order.
+    exact: VecDeque<(R, R)>,
+    /// The block layer whose queue key schedules the deliveries.
+    pub key_layer: usize,
+}
+
+/// A block of fast layers `lower..=upper`.
+#[derive(Debug, Clone)]
+pub(crate) struct Block<R> {
+    pub lower: usize,
+    pub upper: usize,
+    shape: Shape<R>,
+    /// The response to each input port, traced as far as asked.
+    traces: Vec<Trace<R>>,
+    /// The lower port, and the upper one unless the block is the top.
+    pub ports: Vec<Port<R>>,
+    /// Per input port, until its trace is done: `sum |d|` and
+    /// `sum |d| t` of its arrivals, whose rest is counted then.
+    owed: Vec<(f64, f64)>,
+}
+
+impl<R: Real> Block<R> {
+    /// The block `lower..=upper` of a rod's layers; `spacing` gives a
+    /// lane's lattice spacing.
+    pub(crate) fn new(
+        layers: &[LayerConst<R>],
+        interfaces: &[InterfaceCoefficients<R>],
+        (lower, upper): (usize, usize),
+        spacing: &dyn Fn(usize, Direction) -> R,
+    ) -> Self {
+        let top = upper + 1 == layers.len();
+        let mut outs = vec![(lower - 1, Direction::Down)];
+        if !top {
+            outs.push((upper + 1, Direction::Up));
+        }
+        let shape = Shape {
+            layers: layers[lower..=upper].to_vec(),
+            inner: interfaces[lower..upper].to_vec(),
+            lower: interfaces[lower - 1],
+            upper: (!top).then(|| interfaces[upper]),
+            spacing: (lower..=upper).map(|m| spacing(m, Direction::Up)).collect(),
+            per_spacing: (lower..=upper)
+                .map(|m| R::one() / spacing(m, Direction::Up))
+                .collect(),
+            port_spacing: outs.iter().map(|&(j, d)| spacing(j, d)).collect(),
+            port_speed: outs.iter().map(|&(j, _)| layers[j].wave_speed).collect(),
+        };
+        let traces = (0..outs.len()).map(|j| Trace::start(&shape, j)).collect();
+        let ports = outs
+            .iter()
+            .enumerate()
+            .map(|(o, &out)| Port {
+                boundary: if o == 0 { lower } else { upper + 1 },
+                out,
+                spacing: shape.port_spacing[o],
+                arrivals: vec![VecDeque::new(); outs.len()],
+                next: i64::MIN,
+                exact: VecDeque::new(),
+                key_layer: if o == 0 { lower } else { upper },
+            })
+            .collect();
+        Self {
+            lower,
+            upper,
+            shape,
+            traces,
+            ports,
+            owed: vec![(0.0, 0.0); outs.len()],
+        }
+    }
+
+    /// Response tap `i` of input `j` at port `o`, traced if need be; the
+    /// fronts the trace followed for it are added to `work`.
+    fn tap(&mut self, j: usize, o: usize, i: i64, work: &mut u64) -> R {
+        let trace = &mut self.traces[j];
+        if !trace.has(&self.shape, o, i) {
+            *work += FRONT_ADDS * trace.extend(&self.shape, o, i);
+        }
+        usize::try_from(i)
+            .ok()
+            .and_then(|i| trace.taps[o].get(i).copied())
+            .unwrap_or(R::zero())
+    }
+
+    /// A jump `d` arriving at input port `input` at `t`: put on each
+    /// port's lattice. Its response on points a port has already delivered
+    /// goes into `late` (`(port, born, jump)`), to be spawned now. The work
+    /// done (fronts traced, multiply-adds).
+    pub(crate) fn arrive(
+        &mut self,
+        input: usize,
+        t: R,
+        d: R,
+        late: &mut Vec<(usize, R, R)>,
+    ) -> u64 {
+        let mut work = 0;
+        let owed = &mut self.owed[input];
+        owed.0 += d.abs().to_f64();
+        owed.1 += d.abs().to_f64() * t.to_f64();
+        for o in 0..self.ports.len() {
+            // the large fronts at their exact times
+            let exact = &mut self.ports[o].exact;
+            for &(delay, jump) in &self.traces[input].exact[o] {
+                let at = t + delay;
+                let i = exact.partition_point(|e| e.0 <= at);
+                exact.insert(i, (at, d * jump));
+            }
+            let h = self.ports[o].spacing;
+            let k = (t / h).floor();
+            let f = (t - k * h) / h;
+            let k = k.to_f64() as i64;
+            if self.ports[o].arrivals.iter().all(VecDeque::is_empty) {
+                self.ports[o].next = self.ports[o].next.max(k);
+            }
+            for (k, a) in [(k, d * (R::one() - f)), (k + 1, d * f)] {
+                if a == R::zero() {
+                    continue;
+                }
+                for idx in k..self.ports[o].next {
+                    let c = self.tap(input, o, idx - k, &mut work);
+                    if c != R::zero() {
+                        late.push((o, R::of(idx as f64) * h, a * c));
+                    }
+                }
+                self.ports[o].arrivals[input].push_back((k, a));
+            }
+        }
+        work
+    }
+
+    /// Port `o`'s deliveries due by `now` into `due` (`(born, jump)`); when
+    /// the next is due, and the work done.
+    pub(crate) fn due(&mut self, o: usize, now: R, due: &mut Vec<(R, R)>) -> (Option<R>, u64) {
+        let mut work = 0;
+        let h = self.ports[o].spacing;
+        let waiting = |port: &Port<R>| port.arrivals.iter().any(|a| !a.is_empty());
+        while waiting(&self.ports[o]) && R::of(self.ports[o].next as f64) * h <= now {
+            let m = self.ports[o].next;
+            let mut sum = R::zero();
+            for (j, trace) in self.traces.iter_mut().enumerate() {
+                let arrivals = &mut self.ports[o].arrivals[j];
+                // arrivals whose response is over at `m` are let go (an
+                // arrival's two shares are one point apart: nearly in order)
+                while let Some(&(k, _)) = arrivals.front() {
+                    if !(trace.done && m - k >= trace.taps[o].len() as i64) {
+                        break;
+                    }
+                    arrivals.pop_front();
+                }
+                let Some(oldest) = arrivals.iter().map(|&(k, _)| k).min() else {
+                    continue;
+                };
+                if !trace.has(&self.shape, o, m - oldest) {
+                    work += FRONT_ADDS * trace.extend(&self.shape, o, m - oldest);
+                }
+                let taps = &trace.taps[o];
+                for &(k, a) in arrivals.iter() {
+                    if let Some(&c) = usize::try_from(m - k).ok().and_then(|i| taps.get(i)) {
+                        sum += a * c;
+                    }
+                }
+                work += arrivals.len() as u64;
+            }
+            if sum != R::zero() {
+                due.push((R::of(m as f64) * h, sum));
+            }
+            self.ports[o].next += 1;
+        }
+        let port = &mut self.ports[o];
+        while let Some(&(at, jump)) = port.exact.front() {
+            if at > now {
+                break;
+            }
+            due.push((at, jump));
+            port.exact.pop_front();
+        }
+        let lattice = waiting(port).then(|| R::of(port.next as f64) * h);
+        let next = match (lattice, port.exact.front()) {
+            (Some(a), Some(&(b, _))) => Some(a.min(b)),
+            (a, b) => a.or(b.map(|e| e.0)),
+        };
+        (next, work)
+    }
+
+    /// What the arrivals at inputs whose trace is done left in the block
+    /// beyond its response, not yet counted: `(velocity, force, force
+    /// times birth)` as for dropped fronts.
+    pub(crate) fn take_rest(&mut self) -> Option<(f64, f64, f64)> {
+        let mut rest = None;
+        for (trace, owed) in self.traces.iter().zip(self.owed.iter_mut()) {
+            if trace.done && owed.0 > 0.0 {
+                let (v, f) = trace.rest;
+                let r = rest.get_or_insert((0.0, 0.0, 0.0));
+                r.0 += v * owed.0;
+                r.1 += f * owed.0;
+                r.2 += f * owed.1;
+                *owed = (0.0, 0.0);
+            }
+        }
+        rest
+    }
+}
+
+/// A run's blocks, with where their ports and keys are.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Blocks<R> {
+    pub list: Vec<Block<R>>,
+    /// Per boundary: the block and port there.
+    pub port_at: Vec<Option<(usize, usize)>>,
+    /// Per layer: the block and port whose deliveries its key schedules.
+    pub key_of: Vec<Option<(usize, usize)>>,
+    /// Deliveries to spawn, kept from one arrival to the next.
+    pub spawns: Vec<(R, R)>,
+    /// An arrival's late deliveries (`(port, born, jump)`), kept so.
+    pub late: Vec<(usize, R, R)>,
+    /// How much earlier than its arrival's lattice point a delivery may be
+    /// born: twice the widest port spacing (the arrival and the response
+    /// are each split onto the lattice).
+    pub margin: R,
+}
+
+impl<R: Real> Blocks<R> {
+    /// Whether a front of lane (`j`, `dir`) on its way to layer `i` meets
+    /// a block's port: it crosses a block between them, or it heads into a
+    /// port first and comes back. Its block's part may then come out up to
+    /// [`Blocks::margin`] earlier than the layers' transits say.
+    #[inline]
+    pub(crate) fn answers(&self, i: usize, j: usize, dir: Direction) -> bool {
+        let (lo, hi) = (i.min(j), i.max(j));
+        let towards = (dir == Direction::Up) == (j < i);
+        self.list.iter().any(|b| {
+            let between = lo < b.lower && b.upper < hi;
+            let into = match dir {
+                Direction::Up => j + 1 == b.lower,
+                Direction::Down => j == b.upper + 1,
+            };
+            between || (!towards && into)
+        })
+    }
+
+    /// Indexes `list` for a rod of `n` layers.
+    pub(crate) fn new(list: Vec<Block<R>>, n: usize) -> Self {
+        let mut port_at = vec![None; n + 1];
+        let mut key_of = vec![None; n];
+        let mut margin = R::zero();
+        for (bi, block) in list.iter().enumerate() {
+            for (o, port) in block.ports.iter().enumerate() {
+                port_at[port.boundary] = Some((bi, o));
+                key_of[port.key_layer] = Some((bi, o));
+                margin = margin.max(R::of(2.0) * port.spacing);
+            }
+        }
+        Self {
+            list,
+            port_at,
+            key_of,
+            spawns: Vec::new(),
+            late: Vec::new(),
+            margin,
+        }
+    }
+}

@@ -1,0 +1,122 @@
+//! Which layers make blocks, and where answering them pays.
+
+/// A layer is in a block when its transit is at most this share of the
+/// shortest transit of the layers just outside the block.
+pub(crate) const FAST: f64 = 1.0 / 8.0;
+
+/// A layer whose neighbours' transits are both at least this many times
+/// its own leaps long windows (`leap.rs`) and is left out of blocks: its
+/// ringing would make the block's response last as long as the run.
+pub(crate) const LEAPS_WELL: f64 = 64.0;
+
+/// The candidate blocks of a rod, by its layers' transit times: runs of
+/// two or more layers above the bottom, each layer at most [`FAST`] of the
+/// shortest transit just outside the run and none that leaps well; the
+/// longest first.
+pub(crate) fn candidates(transits: &[f64]) -> Vec<(usize, usize)> {
+    let n = transits.len();
+    let leaps_well = |m: usize| {
+        let below = transits[m - 1];
+        let above = transits.get(m + 1).copied().unwrap_or(f64::INFINITY);
+        below.min(above) >= LEAPS_WELL * transits[m]
+    };
+    let mut runs = Vec::new();
+    for a in 1..n {
+        if leaps_well(a) {
+            continue;
+        }
+        for b in a + 1..n {
+            if leaps_well(b) {
+                break;
+            }
+            let outside = [Some(a - 1), (b + 1 < n).then_some(b + 1)];
+            let slowest_fast = transits[a..=b].iter().copied().fold(0.0, f64::max);
+            let quickest_outside = outside
+                .iter()
+                .flatten()
+                .map(|&j| transits[j])
+                .fold(f64::INFINITY, f64::min);
+            if slowest_fast <= FAST * quickest_outside {
+                runs.push((a, b));
+            }
+        }
+    }
+    runs.sort_by_key(|&(a, b)| (std::cmp::Reverse(b - a), a));
+    runs
+}
+
+/// Whether answering block `run` by its response is expected to pay, judged
+/// on the ladder's third lattice (the least a ladder runs) over a run of
+/// eight times the rod's summed transits. The loop may take up to `2 / s`
+/// events a unit of time in each of the block's lanes (spacing `s`, about
+/// a microsecond each; fewer where the lanes are not full, which cannot be
+/// foreseen); the trace follows as many fronts at a fiftieth of the price,
+/// but only while the block rings; and each lattice point a port delivers
+/// sums the arrivals still ringing, up to all of them at a nanosecond
+/// each: `T / (h_out h_in)` a unit of time, the cost that grows with the
+/// run. The sums must stay under a sixty-fourth of the loop's most: at a
+/// quarter, survey rod 13 (whose loop lanes are far from full) took twice
+/// as long. Only the speed depends on this choice, never the honesty of
+/// the result: the ladder measures the error either way.
+pub(crate) fn pays(transits: &[f64], (a, b): (usize, usize)) -> bool {
+    let (start, longest) = crate::ladder::LADDER_START;
+    let t_max = transits.iter().copied().fold(0.0, f64::max);
+    let spacing = |m: usize| (start / 4.0 * transits[m]).min(longest / 4.0 * t_max);
+    let run = 8.0 * transits.iter().sum::<f64>();
+    let loop_rate: f64 = (a..=b).map(|m| 2.0 / spacing(m)).sum();
+    let ports: Vec<usize> = [Some(a - 1), (b + 1 < transits.len()).then_some(b + 1)]
+        .into_iter()
+        .flatten()
+        .collect();
+    let sums: f64 = ports
+        .iter()
+        .flat_map(|&o| ports.iter().map(move |&i| (o, i)))
+        .map(|(o, i)| run / (spacing(o) * spacing(i)) * 1e-3)
+        .sum();
+    sums < loop_rate / 64.0
+}
+
+/// Whether `run` neither overlaps nor touches any of `chosen`: a block's
+/// neighbours are slow layers, never another block's.
+pub(crate) fn apart(run: (usize, usize), chosen: &[(usize, usize)]) -> bool {
+    chosen.iter().all(|&(a, b)| run.1 + 1 < a || b + 1 < run.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Layer survey rod 12 (seed 7): layers 3 and 4 (transits `3.4e-5`,
+    /// `2.8e-6`) between layers of `0.38` and `7.7e-3`; the fast top
+    /// (`1.6e-6` under `2.8e-2`) leaps well on its own and the bottom is
+    /// never in a block.
+    const ROD_12: [f64; 8] = [
+        1.3e-5, 7.37e-4, 0.378, 3.35e-5, 2.76e-6, 7.71e-3, 2.78e-2, 1.6e-6,
+    ];
+
+    #[test]
+    fn the_fast_pair_between_slow_layers_is_the_block() {
+        let runs = candidates(&ROD_12);
+        assert_eq!(runs.first(), Some(&(3, 4)), "{runs:?}");
+        assert!(runs.iter().all(|&(a, b)| a >= 1 && b < 7), "{runs:?}");
+        assert!(pays(&ROD_12, (3, 4)));
+    }
+
+    /// A block only a few hundred times faster than its slow neighbours,
+    /// whose lanes a delivery's sums would cost more than the loop: the
+    /// four-layer rod whose block took 25 times the loop's time.
+    #[test]
+    fn a_block_that_would_cost_more_than_the_loop_is_left_to_it() {
+        let transits = [0.586, 1.57e-3, 2.67e-3, 1.02];
+        assert_eq!(candidates(&transits), vec![(1, 2)]);
+        assert!(!pays(&transits, (1, 2)));
+    }
+
+    #[test]
+    fn blocks_neither_overlap_nor_touch() {
+        assert!(apart((3, 4), &[(6, 7)]));
+        assert!(!apart((3, 4), &[(5, 6)]));
+        assert!(!apart((3, 4), &[(1, 2)]));
+        assert!(apart((3, 4), &[(0, 1)]));
+    }
+}

@@ -1,0 +1,123 @@
+//! A block in the event loop: arrivals at its ports, and the deliveries
+//! its ports' keys schedule.
+
+use super::Blocks;
+use crate::engine::{StepKind, Tracer, past};
+use crate::error::WaveError;
+use crate::lane::{Direction, Lane};
+use crate::queue::EventKey;
+use crate::real::Real;
+
+/// Multiply-adds of a response counted as one unit of work (the event
+/// budget's unit is a loop iteration, about a microsecond; a multiply-add
+/// takes about a nanosecond, a traced front [`super::FRONT_ADDS`] of them).
+const ADDS_PER_WORK: u64 = 256;
+
+impl<R: Real> Tracer<R> {
+    /// The rod's blocks of fast layers (merged runs), with their layers and
+    /// neighbours kept from leaping: the neighbours' lanes take the
+    /// blocks' deliveries, which a leap would not see coming.
+    pub(crate) fn find_blocks(&mut self) {
+        let transits: Vec<f64> = self
+            .layers
+            .iter()
+            .map(|l| l.transit_time.to_f64())
+            .collect();
+        let spacing = |m: usize, d: Direction| match self.lanes[Lane::<R>::index(m, d)].rule {
+            crate::lane::MergeRule::Lattice { spacing, .. } => spacing,
+            crate::lane::MergeRule::Simultaneous { .. } => R::zero(),
+        };
+        let mut chosen = Vec::new();
+        let mut list = Vec::new();
+        for run in super::candidates(&transits) {
+            if super::apart(run, &chosen) && super::pays(&transits, run) {
+                chosen.push(run);
+                list.push(super::Block::new(
+                    &self.layers,
+                    &self.interfaces,
+                    run,
+                    &spacing,
+                ));
+            }
+        }
+        let n = self.layers.len();
+        for &(a, b) in &chosen {
+            for m in a - 1..=(b + 1).min(n - 1) {
+                self.leap_after[m] = -R::neg_infinity();
+            }
+        }
+        self.blocks = Blocks::new(list, n);
+    }
+
+    /// Fronts reaching a block's port at boundary `b`: the neighbour's
+    /// reflection spawned as at any interface, the part that enters the
+    /// block answered by its response.
+    pub(crate) fn block_boundary(
+        &mut self,
+        b: usize,
+        t: R,
+        (from_below, from_above): (R, R),
+        (bi, input): (usize, usize),
+        parents: &[u32],
+    ) -> Result<StepKind, WaveError> {
+        let k = self.interfaces[b - 1];
+        let d = if input == 0 {
+            self.spawn(
+                b - 1,
+                Direction::Down,
+                t,
+                k.up_reflected * from_below,
+                parents,
+            )?;
+            from_below
+        } else {
+            self.spawn(b, Direction::Up, t, k.down_reflected * from_above, parents)?;
+            from_above
+        };
+        let mut late = std::mem::take(&mut self.blocks.late);
+        late.clear();
+        let work = self.blocks.list[bi].arrive(input, t, d, &mut late);
+        self.leap_work += work / ADDS_PER_WORK;
+        for &(o, born, jump) in &late {
+            let (layer, dir) = self.blocks.list[bi].ports[o].out;
+            self.spawn(layer, dir, born, jump, &[])?;
+        }
+        self.blocks.late = late;
+        for o in 0..self.blocks.list[bi].ports.len() {
+            self.deliver(bi, o)?;
+        }
+        Ok(StepKind::Interface(b))
+    }
+
+    /// A port's deliveries due now, from its key's event.
+    pub(crate) fn block_delivery(&mut self, bi: usize, o: usize) -> Result<StepKind, WaveError> {
+        self.deliver(bi, o)?;
+        Ok(StepKind::Interface(self.blocks.list[bi].ports[o].boundary))
+    }
+
+    /// Spawns port `o`'s deliveries due by now and schedules its next.
+    fn deliver(&mut self, bi: usize, o: usize) -> Result<(), WaveError> {
+        let mut due = std::mem::take(&mut self.blocks.spawns);
+        due.clear();
+        let block = &mut self.blocks.list[bi];
+        let (next, work) = block.due(o, self.now, &mut due);
+        let rest = block.take_rest();
+        let (layer, dir) = block.ports[o].out;
+        let key = EventKey::Layer(block.ports[o].key_layer as u32);
+        self.leap_work += work / ADDS_PER_WORK;
+        if let Some((velocity, force, force_time)) = rest {
+            self.drop_rest(velocity, force, force_time);
+        }
+        for &(born, jump) in due.iter() {
+            self.spawn(layer, dir, born, jump, &[])?;
+        }
+        self.blocks.spawns = due;
+        match next {
+            Some(at) => self.queue.schedule(key, at, self.now).map_err(past),
+            None => {
+                self.queue.cancel(key);
+                Ok(())
+            }
+        }
+    }
+}

@@ -1,0 +1,512 @@
+//! A block's response: what comes out of its ports, on the neighbours'
+//! lattices, for one front going in.
+//!
+//! The block's layers are traced alone between neighbours that take every
+//! front leaving it and send nothing back: what the neighbours send back
+//! is a later input, answered by the same response (the block is linear
+//! and does not change in time). The trace is the merged engine's own on
+//! a small scale: the same scattering at every boundary, the same lattice
+//! of births in each of the block's lanes, placed from the input's
+//! instant. A front leaving the block is deposited on its port's lattice
+//! as a lattice lane deposits it (split between the two nearest points so
+//! that its jump and first moment are kept), with the input on the
+//! lattice's point 0.
+//!
+//! The trace goes only as far as the run needs it: a port about to deliver
+//! lattice point `m` asks for the response up to `m` cells after its
+//! oldest input, so a block costs at most what its trace of the run's
+//! length costs, however long it rings. It is done when what the block
+//! still holds could carry less than a `1e-13` share of the input's
+//! velocity; that rest is counted as dropped at every input.
+
+use crate::engine::LayerConst;
+use crate::real::Real;
+use impact_model::InterfaceCoefficients;
+use std::collections::VecDeque;
+
+/// What the block still holds, as a share of the input's velocity, when
+/// its trace is done.
+pub(crate) const REST: f64 = 1e-13;
+
+/// Fronts carrying at least this share of the input's velocity are
+/// followed at their exact times, as a lattice lane keeps its large fronts
+/// where they were born (`KEEP_ABOVE` in the engine's setup): the first
+/// fronts through a block decide contacts, and on the lattice their
+/// timing was lost by up to the block's round trip whatever the spacing
+/// (a four-layer rod's contact ended `2e-4` early, `e` off by `4e-4` under
+/// a bound of `3e-13`: the levels agreed).
+pub(crate) const KEEP_SHARE: f64 = 1e-2;
+
+/// At most this many fronts of one trace followed exactly.
+pub(crate) const KEEP_AT_MOST: usize = 32;
+
+/// The block between its neighbours, as its trace needs it.
+#[derive(Debug, Clone)]
+pub(crate) struct Shape<R> {
+    /// The block's layers, bottom first.
+    pub layers: Vec<LayerConst<R>>,
+    /// The block's own interfaces, bottom first (`layers.len() - 1`).
+    pub inner: Vec<InterfaceCoefficients<R>>,
+    /// The interface with the layer below.
+    pub lower: InterfaceCoefficients<R>,
+    /// The interface with the layer above, or `None` at the free top.
+    pub upper: Option<InterfaceCoefficients<R>>,
+    /// Lattice spacing of the block's lanes, per layer.
+    pub spacing: Vec<R>,
+    /// Their reciprocals (a division was most of a front's price).
+    pub per_spacing: Vec<R>,
+    /// Lattice spacing of the lane each port feeds (lower, then upper).
+    pub port_spacing: Vec<R>,
+    /// Wave speeds of the neighbours an input comes from (lower, upper).
+    pub port_speed: Vec<R>,
+}
+
+/// One lane of the trace: what is born on each point of its lattice,
+/// point `base` first.
+#[derive(Debug, Clone, Default)]
+struct TraceLane<R> {
+    base: i64,
+    points: VecDeque<R>,
+}
+
+impl<R: Real> TraceLane<R> {
+    /// Adds `d` at lattice point `k`. A point before the lane's first is
+    /// one no front has reached yet (a front born within a step arrives
+    /// after it, see `Trace::step`): the lanes are taken one after another
+    /// within a step, so an emptied lane may first take a later birth.
+    #[inline(always)]
+    fn add(&mut self, k: i64, d: R) {
+        if self.points.is_empty() {
+            self.base = k;
+        }
+        while k < self.base {
+            self.points.push_front(R::zero());
+            self.base -= 1;
+        }
+        let i = (k - self.base) as usize;
+        if i >= self.points.len() {
+            self.points.resize(i + 1, R::zero());
+        }
+        self.points[i] += d;
+    }
+}
+
+/// The response to a unit jump arriving at one input port, traced as far
+/// as asked.
+#[derive(Debug, Clone)]
+pub(crate) struct Trace<R> {
+    lanes: Vec<TraceLane<R>>,
+    /// Per output port: deposits on its lattice, point `k` at `[k]`.
+    pub taps: Vec<Vec<R>>,
+    /// Per output port: the fronts that leave it from exactly followed
+    /// ones, `(delay, jump)` in the order they leave.
+    pub exact: Vec<Vec<(R, R)>>,
+    /// Fronts followed exactly: born, jump, lane.
+    kept: Vec<(R, R, usize)>,
+    /// How many were ever kept.
+    kept_ever: usize,
+    /// A front is kept when its velocity jump is at least this.
+    keep: R,
+    /// Every front arriving before this has been followed.
+    pub reached: R,
+    /// The trace's step: no front born within it arrives within it (a
+    /// front is born at most a spacing before its birth on the lattice,
+    /// and travels a transit).
+    step: R,
+    /// Nothing the block holds matters any more: the taps are final.
+    pub done: bool,
+    /// Velocity (`sum |d| c`) and force (`sum E |d|`) of what was dropped
+    /// or left when done, per unit input.
+    pub rest: (f64, f64),
+    dropped: (R, R),
+    stop: R,
+    tiny: R,
+    /// Fronts followed.
+    pub followed: u64,
+    steps: u64,
+}
+
+/// Splits a jump born at `t` between the lattice points around it: the
+/// lower point's index and the two shares.
+fn split<R: Real>(t: R, spacing: R) -> (R, R, R) {
+    let k = (t / spacing).floor();
+    let f = (t - k * spacing) / spacing;
+    (k, R::one() - f, f)
+}
+
+/// Deposits `d` born at `t` on a port's lattice.
+fn deposit<R: Real>(taps: &mut Vec<R>, t: R, d: R, spacing: R) {
+    let (k, lo, hi) = split(t, spacing);
+    let k = k.to_f64() as usize;
+    if taps.len() < k + 2 {
+        taps.resize(k + 2, R::zero());
+    }
+    taps[k] += d * lo;
+    taps[k + 1] += d * hi;
+}
+
+impl<R: Real> Trace<R> {
+    /// The trace of a unit jump arriving at port `input` at time 0, before
+    /// any front is followed.
+    pub(crate) fn start(shape: &Shape<R>, input: usize) -> Self {
+        let nb = shape.layers.len();
+        // fronts too small to follow, and when to stop, in velocity per
+        // unit input (the input's velocity jump is `c_in`)
+        let stop = R::of(REST) * shape.port_speed[input];
+        let step = shape
+            .layers
+            .iter()
+            .zip(&shape.spacing)
+            .map(|(l, &s)| l.transit_time - s)
+            .fold(-R::neg_infinity(), |a, b| a.min(b));
+        let mut trace = Self {
+            lanes: vec![TraceLane::default(); 2 * nb],
+            taps: vec![Vec::new(); shape.port_spacing.len()],
+            exact: vec![Vec::new(); shape.port_spacing.len()],
+            kept: Vec::new(),
+            kept_ever: 0,
+            keep: R::of(KEEP_SHARE) * shape.port_speed[input],
+            reached: R::zero(),
+            step,
+            steps: 0,
+            done: false,
+            rest: (0.0, 0.0),
+            dropped: (R::zero(), R::zero()),
+            stop,
+            tiny: stop * R::of(1e-6),
+            followed: 0,
+        };
+        match (input, shape.upper) {
+            (0, _) => trace.enter(shape, 0, true, R::zero(), shape.lower.up_transmitted, true),
+            (_, Some(upper)) => trace.enter(
+                shape,
+                nb - 1,
+                false,
+                R::zero(),
+                upper.down_transmitted,
+                true,
+            ),
+            (_, None) => trace.done = true,
+        }
+        // the exact fronts are few and leave within a few round trips:
+        // all their outputs are known before the first arrival
+        while !trace.kept.is_empty() && !trace.done {
+            let next = trace.reached + trace.step;
+            trace.extend_to(shape, next);
+        }
+        trace
+    }
+
+    /// A front born at `t` in lane (`m`, up or down): followed exactly if
+    /// its parent was and it is large enough (and few were), else on the
+    /// lane's lattice.
+    #[inline]
+    fn enter(&mut self, shape: &Shape<R>, m: usize, up: bool, t: R, d: R, exact: bool) {
+        let lane = 2 * m + usize::from(!up);
+        if exact
+            && (d * shape.layers[m].wave_speed).abs() >= self.keep
+            && self.kept_ever < KEEP_AT_MOST
+        {
+            self.kept_ever += 1;
+            self.kept.push((t, d, lane));
+        } else {
+            self.push(shape, m, up, t, d);
+        }
+    }
+
+    /// A front leaving the block at port `o` at `t`: exactly, or on the
+    /// port's lattice.
+    #[inline]
+    fn leave(&mut self, shape: &Shape<R>, o: usize, t: R, d: R, exact: bool) {
+        if exact {
+            self.exact[o].push((t, d));
+        } else {
+            deposit(&mut self.taps[o], t, d, shape.port_spacing[o]);
+        }
+    }
+
+    /// Whether port `out`'s tap `k` is final.
+    #[inline]
+    pub(crate) fn has(&self, shape: &Shape<R>, out: usize, k: i64) -> bool {
+        self.done || R::of((k + 1) as f64) * shape.port_spacing[out] <= self.reached
+    }
+
+    /// A front born at `t` in the block's lane (`m`, up or down), on the
+    /// lane's lattice.
+    fn push(&mut self, shape: &Shape<R>, m: usize, up: bool, t: R, d: R) {
+        let l = &shape.layers[m];
+        if (d * l.wave_speed).abs() < self.tiny {
+            self.dropped.0 += (d * l.wave_speed).abs();
+            self.dropped.1 += (d * l.modulus).abs();
+            return;
+        }
+        let lane = &mut self.lanes[2 * m + usize::from(!up)];
+        // (births are at or after the input, so truncation is the floor)
+        let x = t * shape.per_spacing[m];
+        let k = x.to_f64() as i64;
+        let hi = x - R::of(k as f64);
+        lane.add(k, d * (R::one() - hi));
+        if hi != R::zero() {
+            lane.add(k + 1, d * hi);
+        }
+    }
+
+    /// Follows fronts until port `out`'s tap `k` is final (or the trace is
+    /// done); the fronts followed. Step by step: every front arriving
+    /// within a step was born before it, so the lanes are taken one after
+    /// another (scattering is linear, and deposits add).
+    pub(crate) fn extend(&mut self, shape: &Shape<R>, out: usize, k: i64) -> u64 {
+        let before = self.followed;
+        let until = R::of((k + 1) as f64) * shape.port_spacing[out];
+        self.extend_to(shape, until);
+        self.followed - before
+    }
+
+    /// Follows every front arriving before `until` (or until done).
+    fn extend_to(&mut self, shape: &Shape<R>, until: R) {
+        while !self.done && self.reached < until {
+            if self.kept.is_empty() && self.lanes.iter().all(|l| l.points.is_empty()) {
+                self.finish(shape);
+                break;
+            }
+            self.steps += 1;
+            if self.steps.is_multiple_of(16) && self.held(shape) < self.stop {
+                self.finish(shape);
+                break;
+            }
+            let end = self.reached + self.step;
+            let mut n = 0;
+            while n < self.kept.len() {
+                let (born, d, lane) = self.kept[n];
+                let at = born + shape.layers[lane / 2].transit_time;
+                if at < end {
+                    self.kept.swap_remove(n);
+                    self.followed += 1;
+                    self.scatter(shape, lane / 2, lane % 2 == 0, at, d, true);
+                } else {
+                    n += 1;
+                }
+            }
+            for i in 0..self.lanes.len() {
+                let (m, up) = (i / 2, i % 2 == 0);
+                let (s, transit) = (shape.spacing[m], shape.layers[m].transit_time);
+                loop {
+                    let lane = &mut self.lanes[i];
+                    let at = R::of(lane.base as f64) * s + transit;
+                    if at >= end {
+                        break;
+                    }
+                    let Some(d) = lane.points.pop_front() else {
+                        break;
+                    };
+                    lane.base += 1;
+                    if d != R::zero() {
+                        self.followed += 1;
+                        self.scatter(shape, m, up, at, d, false);
+                    }
+                }
+            }
+            self.reached = end;
+        }
+    }
+
+    /// A front of lane (`m`, up or down) arriving at `at` with jump `d`,
+    /// followed exactly or on the lattice.
+    #[inline]
+    fn scatter(&mut self, shape: &Shape<R>, m: usize, up: bool, at: R, d: R, exact: bool) {
+        let top = shape.layers.len() - 1;
+        match (up, m) {
+            (true, m) if m < top => {
+                let k = shape.inner[m];
+                self.enter(shape, m, false, at, k.up_reflected * d, exact);
+                self.enter(shape, m + 1, true, at, k.up_transmitted * d, exact);
+            }
+            (true, _) => match shape.upper {
+                Some(k) => {
+                    self.leave(shape, 1, at, k.up_transmitted * d, exact);
+                    self.enter(shape, m, false, at, k.up_reflected * d, exact);
+                }
+                None => self.enter(shape, m, false, at, -d, exact),
+            },
+            (false, 0) => {
+                let k = shape.lower;
+                self.leave(shape, 0, at, k.down_transmitted * d, exact);
+                self.enter(shape, 0, true, at, k.down_reflected * d, exact);
+            }
+            (false, m) => {
+                let k = shape.inner[m - 1];
+                self.enter(shape, m, true, at, k.down_reflected * d, exact);
+                self.enter(shape, m - 1, false, at, k.down_transmitted * d, exact);
+            }
+        }
+    }
+
+    /// Done: what is left counts as dropped at every input.
+    fn finish(&mut self, shape: &Shape<R>) {
+        let (mut velocity, mut force) = self.dropped;
+        for (i, lane) in self.lanes.iter_mut().enumerate() {
+            let l = &shape.layers[i / 2];
+            for &d in lane.points.iter() {
+                velocity += (d * l.wave_speed).abs();
+                force += (d * l.modulus).abs();
+            }
+            lane.points.clear();
+        }
+        for &(_, d, lane) in &self.kept {
+            let l = &shape.layers[lane / 2];
+            velocity += (d * l.wave_speed).abs();
+            force += (d * l.modulus).abs();
+        }
+        self.kept.clear();
+        self.rest = (velocity.to_f64(), force.to_f64());
+        self.done = true;
+    }
+
+    /// The velocity the block's fronts could carry: `sum |d| c`.
+    fn held(&self, shape: &Shape<R>) -> R {
+        let kept = self.kept.iter().fold(R::zero(), |s, &(_, d, lane)| {
+            s + (d * shape.layers[lane / 2].wave_speed).abs()
+        });
+        self.lanes.iter().enumerate().fold(kept, |s, (i, lane)| {
+            let c = shape.layers[i / 2].wave_speed;
+            lane.points.iter().fold(s, |s, &d| s + (d * c).abs())
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use impact_model::WaveConstants;
+
+    /// A layer of `length`, `modulus` and `density` as the engine holds it.
+    fn layer(length: f64, modulus: f64, density: f64) -> LayerConst<f64> {
+        let w = WaveConstants::of(length, modulus, density);
+        LayerConst {
+            bottom: 0.0,
+            top: length,
+            length,
+            modulus,
+            wave_speed: w.wave_speed,
+            impedance: w.impedance,
+            transit_time: w.transit_time,
+            drop_strain: 0.0,
+        }
+    }
+
+    fn side(l: &LayerConst<f64>) -> (f64, f64) {
+        (l.impedance, l.modulus)
+    }
+
+    /// The block between `below` and `above` (`None`: the free top), on
+    /// lattices of `share` of each transit, ports on a tenth of the
+    /// neighbours'.
+    fn shape(
+        below: LayerConst<f64>,
+        block: &[LayerConst<f64>],
+        above: Option<LayerConst<f64>>,
+        share: f64,
+    ) -> Shape<f64> {
+        let coefficients = |a: &LayerConst<f64>, b: &LayerConst<f64>| {
+            InterfaceCoefficients::of_sides(side(a), side(b))
+        };
+        let mut ports = vec![below];
+        ports.extend(above);
+        Shape {
+            layers: block.to_vec(),
+            inner: block
+                .windows(2)
+                .map(|w| coefficients(&w[0], &w[1]))
+                .collect(),
+            lower: coefficients(&below, &block[0]),
+            upper: above.map(|a| coefficients(&block[block.len() - 1], &a)),
+            spacing: block.iter().map(|l| share * l.transit_time).collect(),
+            per_spacing: block
+                .iter()
+                .map(|l| 1.0 / (share * l.transit_time))
+                .collect(),
+            port_spacing: ports.iter().map(|l| 0.1 * l.transit_time).collect(),
+            port_speed: ports.iter().map(|l| l.wave_speed).collect(),
+        }
+    }
+
+    /// The whole response to a unit arrival at `input`: its taps at each
+    /// port, summed.
+    fn totals(shape: &Shape<f64>, input: usize) -> Vec<f64> {
+        let mut trace = Trace::start(shape, input);
+        trace.extend(shape, 0, 1 << 40);
+        assert!(trace.done, "the trace ends");
+        assert!(
+            trace.rest.0 < 1e-12 * shape.port_speed[input],
+            "{:?}",
+            trace.rest
+        );
+        let exact = |o: usize| trace.exact[o].iter().map(|e| e.1).sum::<f64>();
+        (0..trace.taps.len())
+            .map(|o| trace.taps[o].iter().sum::<f64>() + exact(o))
+            .collect()
+    }
+
+    /// At zero frequency a block is not there: stress and velocity are the
+    /// same through it, so everything it sends back over all time, with
+    /// the reflection at its face, is what the interface between its two
+    /// neighbours would reflect, and what it passes is what that interface
+    /// would transmit (a top block: what a free end reflects, `-1`). The
+    /// trace knows nothing of this: it scatters fronts and deposits them.
+    #[test]
+    fn a_block_is_transparent_at_zero_frequency() {
+        let below = layer(1.0, 1.0, 1.0);
+        let above = layer(0.7, 4.0, 0.5);
+        let block = [
+            layer(0.02, 1e4, 2.0),
+            layer(0.01, 3e5, 1.0),
+            layer(0.03, 2e3, 0.3),
+        ];
+        for share in [0.2, 0.05] {
+            let s = shape(below, &block, Some(above), share);
+            let direct = InterfaceCoefficients::of_sides(side(&below), side(&above));
+            let from_below = totals(&s, 0);
+            let from_above = totals(&s, 1);
+            let close = |a: f64, b: f64| (a - b).abs() < 1e-9;
+            assert!(close(
+                from_below[0] + s.lower.up_reflected,
+                direct.up_reflected
+            ));
+            assert!(close(from_below[1], direct.up_transmitted));
+            assert!(close(
+                from_above[1] + s.upper.unwrap().down_reflected,
+                direct.down_reflected
+            ));
+            assert!(close(from_above[0], direct.down_transmitted));
+            let top = shape(below, &block[..2], None, share);
+            let free = totals(&top, 0);
+            assert!(close(free[0] + top.lower.up_reflected, -1.0), "{free:?}");
+        }
+    }
+
+    /// The response's first front: a unit arrival from below first comes
+    /// out above after the block's summed transits, with the product of
+    /// the transmissions, at its exact time (it is large).
+    #[test]
+    fn the_first_front_through_comes_out_after_the_summed_transits() {
+        let below = layer(1.0, 1.0, 1.0);
+        let above = layer(0.107, 2.0, 1.0);
+        let block = [layer(0.3, 100.0, 1.0), layer(0.2, 400.0, 1.0)];
+        let s = shape(below, &block, Some(above), 0.1);
+        let through: f64 = block.iter().map(|l| l.transit_time).sum();
+        let amplitude =
+            s.lower.up_transmitted * s.inner[0].up_transmitted * s.upper.unwrap().up_transmitted;
+        let trace = Trace::start(&s, 0);
+        let (delay, jump) = trace.exact[1][0];
+        let close = |a: f64, b: f64| (a - b).abs() < 1e-12 * b.abs();
+        assert!(
+            close(delay, through) && close(jump, amplitude),
+            "{:?}",
+            trace.exact
+        );
+        assert!(
+            trace.exact[1].iter().all(|e| e.0 >= through),
+            "nothing earlier"
+        );
+    }
+}
