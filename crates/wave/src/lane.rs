@@ -22,7 +22,7 @@ mod given;
 mod lattice;
 mod trains;
 
-use fifo::Fifo;
+pub(crate) use fifo::Fifo;
 
 pub(crate) use given::{Given, foresee};
 pub(crate) use trains::{Ring, Trains};

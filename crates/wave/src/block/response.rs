@@ -20,9 +20,9 @@
 //! velocity; that rest is counted as dropped at every input.
 
 use crate::engine::LayerConst;
+use crate::lane::Fifo;
 use crate::real::Real;
 use impact_model::InterfaceCoefficients;
-use std::collections::VecDeque;
 
 /// What the block still holds, as a share of the input's velocity, when
 /// its trace is done.
@@ -62,11 +62,12 @@ pub(crate) struct Shape<R> {
 }
 
 /// One lane of the trace: what is born on each point of its lattice,
-/// point `base` first.
+/// point `base` first (a vector read from a moving head, as a lane's
+/// fronts are: `VecDeque`'s growth by `resize` was a tenth of a trace).
 #[derive(Debug, Clone, Default)]
 struct TraceLane<R> {
     base: i64,
-    points: VecDeque<R>,
+    points: Fifo<R>,
 }
 
 impl<R: Real> TraceLane<R> {
@@ -78,16 +79,23 @@ impl<R: Real> TraceLane<R> {
     fn add(&mut self, k: i64, d: R) {
         if self.points.is_empty() {
             self.base = k;
+            self.points.push_back(d);
+            return;
         }
         while k < self.base {
-            self.points.push_front(R::zero());
+            self.points.insert(0, R::zero());
             self.base -= 1;
         }
         let i = (k - self.base) as usize;
-        if i >= self.points.len() {
-            self.points.resize(i + 1, R::zero());
+        let len = self.points.len();
+        if i < len {
+            self.points[i] += d;
+        } else {
+            for _ in len..i {
+                self.points.push_back(R::zero());
+            }
+            self.points.push_back(d);
         }
-        self.points[i] += d;
     }
 }
 
@@ -160,7 +168,7 @@ impl<R: Real> Trace<R> {
             .map(|(l, &s)| l.transit_time - s)
             .fold(-R::neg_infinity(), |a, b| a.min(b));
         let mut trace = Self {
-            lanes: vec![TraceLane::default(); 2 * nb],
+            lanes: (0..2 * nb).map(|_| TraceLane::default()).collect(),
             taps: vec![Vec::new(); shape.port_spacing.len()],
             exact: vec![Vec::new(); shape.port_spacing.len()],
             kept: Vec::new(),
