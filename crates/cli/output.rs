@@ -203,6 +203,19 @@ pub fn summary(title: &str, o: &Timed<Outcome>) -> String {
                 t.dropped_fronts, t.dropped_velocity, t.merged_fronts
             );
         }
+        let blocks = o
+            .error_estimate
+            .as_ref()
+            .map_or(&[][..], |e| &e.answered_blocks[..]);
+        for [a, b] in blocks {
+            // their fronts are traced once, outside the event count
+            let _ = write!(
+                s,
+                "; the layers of t{} to t{} answered as one block by its traced response",
+                a + 1,
+                b + 1
+            );
+        }
         let _ = writeln!(s);
     }
     if let Some(steps) = o.steps {

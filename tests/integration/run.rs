@@ -230,3 +230,34 @@ fn a_merged_outcome_says_whether_its_levels_converge() {
     // the first rod's differences grow, the second's shrink
     assert_eq!(said, [true, false]);
 }
+
+/// Survey rod 20 (seed 7): four fast layers and a top a hundred times
+/// slower over a slow bottom. The merged run answers the five as one block
+/// by its traced response; the outcome lists the block (layers counted
+/// from 0, as `transit_times`), the method says so in words, and the
+/// summary names the block by its transit times.
+#[test]
+fn a_block_answered_by_its_response_is_reported() {
+    let dir = scratch("blocks");
+    let rod = r#"{"impact_speed": 1.0, "layers": [{"length": 0.4954541110415926, "modulus": 188.6900167559795, "density": 8.347365412239864}, {"length": 1.1185481502738823, "modulus": 9414877211.070044, "density": 0.28648883899932903}, {"length": 0.2840612669703682, "modulus": 25979164416.074642, "density": 0.3498170036734888}, {"length": 0.38155139141117106, "modulus": 22329567728.11959, "density": 3.247529431968498}, {"length": 1.0495878272608952, "modulus": 505785077767.1679, "density": 2.248781579086109}, {"length": 0.6059478279156085, "modulus": 1780693.6578908376, "density": 1.1835804440683804}]}"#;
+    let path = dir.join("rod20.json");
+    std::fs::write(&path, rod).unwrap();
+    let path = path.to_str().unwrap();
+    let v = run_json(&["run", path]);
+    let est = &v["error_estimate"];
+    assert_eq!(est["answered_blocks"], serde_json::json!([[1, 5]]), "{est}");
+    let method = est["method"].as_str().unwrap();
+    assert!(
+        method.contains("t2 to t6 answered as one block"),
+        "{method}"
+    );
+    let out = impact(&["run", path]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(stdout(&out).contains("the layers of t2 to t6 answered as one block"));
+    // a bilayer has no block: the key is absent
+    let bilayer = run_json(&["run", "data/scenes/fig3c.json"]);
+    assert!(
+        bilayer["error_estimate"].get("answered_blocks").is_none(),
+        "{bilayer}"
+    );
+}

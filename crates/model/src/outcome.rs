@@ -103,6 +103,12 @@ pub struct ErrorEstimate {
     /// both differences are non-zero.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub merged_observed_order: Option<f64>,
+    /// Blocks of fast layers a merged run answered by their traced
+    /// response instead of following each of their fronts: the first and
+    /// last layer of each, counted from 0 at the bottom (as the
+    /// `transit_times` list). Their error is in the merged part.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub answered_blocks: Vec<[usize; 2]>,
     /// How the parts were obtained, in words.
     pub method: String,
 }

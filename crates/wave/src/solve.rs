@@ -150,8 +150,11 @@ pub fn solve_observed(
         estimate.merged_observed_order = check.order;
         parts.push(check.method.clone());
         for (a, b) in fine.answered_blocks() {
+            estimate.answered_blocks.push([a, b]);
             parts.push(format!(
-                "layers {a} to {b} answered as a block by their traced response (fast_blocks)"
+                "the layers of t{} to t{} answered as one block by its traced response (fast_blocks)",
+                a + 1,
+                b + 1
             ));
         }
     }

@@ -16,7 +16,7 @@ fn bound(o: &Outcome) -> f64 {
 fn answered(o: &Outcome) -> bool {
     o.error_estimate
         .as_ref()
-        .is_some_and(|e| e.method.contains("as a block"))
+        .is_some_and(|e| !e.answered_blocks.is_empty() && e.method.contains("as one block"))
 }
 
 /// A merged run (the ladder) even where the exact run would fit, with or
