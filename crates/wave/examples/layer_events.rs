@@ -21,7 +21,8 @@ fn main() {
             Resolution::Exact
         },
         leap_quiet_layers: args.get(4).is_none_or(|s| s != "noleap"),
-        // `BLOCKS=1`: blocks of fast layers answered by their response
+        // blocks of fast layers answered by their response only with
+        // `BLOCKS=1` (on by default in runs): the loop's own events here
         fast_blocks: std::env::var_os("BLOCKS").is_some(),
         ..WaveConfig::default()
     };
