@@ -422,6 +422,14 @@ impl<R: Real> Tracer<R> {
     fn first_from_outside(&self, i: usize, taking: bool) -> (Option<R>, Option<R>) {
         let transit = |m: usize| self.lanes[Lane::<R>::index(m, Direction::Up)].transit;
         let earlier = |e: Option<R>, at: R| Some(e.map_or(at, |e| if at < e { at } else { e }));
+        // when a front of layer `j` arriving at its lane's end at `head`
+        // could reach layer `i` (across the layers between, after a
+        // reflection at `j`'s far end if it goes away from `i`)
+        let reach = |j: usize, towards: bool, head: R| {
+            let between = if j < i { j + 1..i } else { i + 1..j };
+            let at = between.fold(head, |at, m| at + transit(m));
+            if towards { at } else { at + transit(j) }
+        };
         let (mut earliest, mut others) = (None, None);
         for lane in &self.lanes {
             let j = lane.layer;
@@ -430,11 +438,7 @@ impl<R: Real> Tracer<R> {
             };
             // a folded top lane's arrivals are already its returns
             let towards = lane.folded || (lane.direction == Direction::Up) == (j < i);
-            let between = if j < i { j + 1..i } else { i + 1..j };
-            let mut at = between.fold(head, |at, m| at + transit(m));
-            if !towards {
-                at += transit(j);
-            }
+            let mut at = reach(j, towards, head);
             if self.blocks.answers(
                 i,
                 j,
@@ -461,11 +465,7 @@ impl<R: Real> Tracer<R> {
                 for port in &block.ports {
                     let (j, dir) = port.out;
                     let towards = (dir == Direction::Up) == (j < i);
-                    let between = if j < i { j + 1..i } else { i + 1..j };
-                    let mut at = between.fold(self.now + transit(j), |at, m| at + transit(m));
-                    if !towards {
-                        at += transit(j);
-                    }
+                    let at = reach(j, towards, self.now + transit(j));
                     earliest = earlier(earliest, at - margin);
                     others = earlier(others, at - margin);
                 }

@@ -130,7 +130,7 @@ pub(crate) struct Trace<R> {
     stop: R,
     tiny: R,
     /// Fronts followed.
-    pub followed: u64,
+    followed: u64,
     steps: u64,
 }
 
