@@ -166,8 +166,9 @@ pub struct WaveConfig {
 }
 
 /// Which leaps take in their neighbours' arrivals (see
-/// [`WaveConfig::leap_arrivals`]); the bottom layer's never do (its wall
-/// decisions are found over the fronts it holds as the leap begins).
+/// [`WaveConfig::leap_arrivals`]). The bottom's wall decisions are then
+/// found over the fronts it holds as the leap begins, with the most the
+/// arrivals could move the wall taken off (`leap/arrivals.rs`).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum LeapArrivals {

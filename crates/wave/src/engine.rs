@@ -154,6 +154,9 @@ pub struct Tracer<R: Real> {
     pub(crate) leap_after: Vec<R>,
     /// Per layer: no try to leap before this many loop events.
     pub(crate) leap_retry: Vec<u64>,
+    /// No weighing of the bottom's leaps with arrivals before this many
+    /// loop events (`leap.rs`: the bottom tries at every event of its own).
+    pub(crate) bottom_weighs_after: u64,
     /// Lattice deposits a leap gathers before placing them: (lane, at, d).
     pub(crate) deposits: Vec<(usize, R, R)>,
     /// Trains an exact leap sends into its neighbours' lanes, spawned

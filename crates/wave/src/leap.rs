@@ -17,7 +17,9 @@
 //! found in closed form and the leap stops just before it; in flight the
 //! bottom's velocity takes only values `V_inf + W_p q^k`, so its lowest
 //! value bounds the height from below and the leap stops before the bottom
-//! could land. The event loop then takes the decision itself.
+//! could land. The event loop then takes the decision itself. A leap of
+//! the bottom that takes its neighbour's arrivals finds them the same way,
+//! with the most those could move the wall taken off (`arrivals.rs`).
 //!
 //! A merged run's neighbours take the deposits on their lattices in bulk;
 //! an exact run's take every front, spawned in birth order when the leap
@@ -42,6 +44,7 @@ mod arrivals;
 mod crossing;
 mod exact;
 mod life;
+mod reach;
 mod scratch;
 mod together;
 mod trains;
@@ -138,6 +141,8 @@ struct Quiet<R> {
     period: R,
     least: R,
     horizon: R,
+    /// The end of the window without the neighbours' arrivals.
+    alone: R,
     /// Whether the leap takes in its neighbours' arrivals.
     taking: bool,
 }
@@ -202,7 +207,7 @@ impl<R: Real> Tracer<R> {
         // weighing costs a pass over two lanes, and a layer in a block of
         // fast layers tries at nearly every event of its own (weighing at
         // each made survey rod 20 15 % slower).
-        let takes = self.takes_arrivals(i);
+        let takes = self.takes_arrivals() && (i > 0 || self.events >= self.bottom_weighs_after);
         let (mut outside, taken) = self.first_from_outside(i, takes);
         let end = |o: Option<R>| o.map_or(horizon, |o| if o < horizon { o } else { horizon });
         let (window, longer) = (end(outside) - t, end(taken) - t);
@@ -210,6 +215,19 @@ impl<R: Real> Tracer<R> {
             && longer >= least
             && (self.leap_arrivals == LeapArrivals::Always
                 || longer > window + window && self.worth_taking(i, longer));
+        if i == 0 && takes && !taking && longer >= least {
+            // the bottom tries at every event of its own, and weighing each
+            // time was a fifth of a run with a fast bottom (survey seed 3's
+            // rod 36, against a tenth): no weighing again for a round trip
+            // of its fronts (holding off the tries instead stopped leaps
+            // without arrivals: seed 3's rod 39, 376 k loop events at the
+            // bottom -> 490 k)
+            let own = self.lanes[up].len() + self.lanes[Lane::<R>::index(0, Direction::Down)].len();
+            self.bottom_weighs_after = self.events + own as u64;
+        }
+        // the window without the arrivals: a bottom's leap falls back on
+        // it where what they could do at the wall is too near a decision
+        let mut alone = end(outside);
         if taking {
             outside = taken;
         }
@@ -227,6 +245,7 @@ impl<R: Real> Tracer<R> {
         for key in [EventKey::Escape, EventKey::Horizon] {
             if let Some(at) = self.queue.time_of(key) {
                 horizon = horizon.min(at);
+                alone = alone.min(at);
             }
         }
         if horizon - t < least {
@@ -242,6 +261,7 @@ impl<R: Real> Tracer<R> {
             period,
             least,
             horizon,
+            alone,
             taking,
         };
         let leapt = self.leap_over(i, quiet, ends, &mut scratch);
@@ -263,7 +283,8 @@ impl<R: Real> Tracer<R> {
             period,
             least,
             mut horizon,
-            taking,
+            alone,
+            mut taking,
         } = quiet;
         let LeapScratch {
             phases,
@@ -275,19 +296,45 @@ impl<R: Real> Tracer<R> {
             fronts_run,
         } = scratch;
         self.phases(i, ti, ends, phases);
-        let taken = if taking {
-            self.take_arrivals(i, horizon, ti, ends, phases)?
-        } else {
-            Taken::default()
-        };
-        if phases.is_empty() && taken.events == 0 {
+        if phases.is_empty() && !taking {
             return Ok(None);
         }
-        sort_stably(phases, phases_run, |p| p.tau);
         let q = ends.bottom * ends.top;
         if i == 0 {
+            // the wall's next decision, found over the bottom's own fronts
+            // (`wall.rs`) and what the arrivals it would take could add
+            sort_stably(phases, phases_run, |p| p.tau);
             self.advance_wall(t);
-            horizon = horizon.min(self.wall_stop(phases, q, period, horizon));
+            let mut stop = horizon;
+            if taking {
+                let limit = match self.contact {
+                    ContactState::InContact { strain } => -strain - self.leap_threshold(),
+                    ContactState::Free { height, .. } => height,
+                };
+                let (slack, scanned) = self.arrivals_slack(horizon, ti, q, limit);
+                if slack < limit {
+                    stop = self.wall_stop(phases, q, period, horizon, slack);
+                }
+                // (a leap without them goes at least as far where the
+                // bound stops this one before the first arrival beyond it)
+                if slack >= limit || stop - t < least || stop <= alone {
+                    // no weighing again before the loop has done as many
+                    // events as this try cost
+                    (taking, horizon) = (false, alone);
+                    self.bottom_weighs_after = self.events + (phases.len() + scanned) as u64;
+                    if alone - t < least {
+                        self.leap_after[i] = alone;
+                        return Ok(None);
+                    }
+                }
+            }
+            if !taking {
+                if phases.is_empty() {
+                    return Ok(None);
+                }
+                stop = self.wall_stop(phases, q, period, horizon, R::zero());
+            }
+            horizon = horizon.min(stop);
             if horizon - t < least {
                 // a decision is near: no leap until the loop has taken it,
                 // and no try before the loop has done as many events as
@@ -300,6 +347,15 @@ impl<R: Real> Tracer<R> {
                 return Ok(None);
             }
         }
+        let taken = if taking {
+            self.take_arrivals(i, horizon, ti, ends, phases)?
+        } else {
+            Taken::default()
+        };
+        if phases.is_empty() && taken.events == 0 {
+            return Ok(None);
+        }
+        sort_stably(phases, phases_run, |p| p.tau);
         let thr = self.layers[i].drop_strain();
         let mut events = taken.events;
         fronts_up.clear();
@@ -404,83 +460,6 @@ impl<R: Real> Tracer<R> {
         self.rebuild(i, fronts_up, fronts_down, fronts_run)?;
         self.leaped += events;
         Ok(Some(events))
-    }
-
-    /// The earliest any front outside layer `i` can reach it: one going
-    /// towards it after crossing the layers between, one going away after
-    /// a reflection at its own layer's far end as well (at an interface,
-    /// the free top or the wall; any other path is longer), and the front a
-    /// landing starts at the wall. Bounding only
-    /// by the fronts going towards the layer let a neighbour's front,
-    /// reflected at its far end, come back inside the leap: the layer had
-    /// already been advanced past it (an exact lane then took a front
-    /// born before its newest; a three-layer rod lost a third of its
-    /// energy, `tests/conservation.rs`).
-    /// With `taking`, also the earliest with the fronts of the neighbours'
-    /// lanes going towards the layer left out (the leap would take them
-    /// in, `arrivals.rs`); else that is the first.
-    fn first_from_outside(&self, i: usize, taking: bool) -> (Option<R>, Option<R>) {
-        let transit = |m: usize| self.lanes[Lane::<R>::index(m, Direction::Up)].transit;
-        let earlier = |e: Option<R>, at: R| Some(e.map_or(at, |e| if at < e { at } else { e }));
-        // when a front of layer `j` arriving at its lane's end at `head`
-        // could reach layer `i` (across the layers between, after a
-        // reflection at `j`'s far end if it goes away from `i`)
-        let reach = |j: usize, towards: bool, head: R| {
-            let between = if j < i { j + 1..i } else { i + 1..j };
-            let at = between.fold(head, |at, m| at + transit(m));
-            if towards { at } else { at + transit(j) }
-        };
-        let (mut earliest, mut others) = (None, None);
-        for lane in &self.lanes {
-            let j = lane.layer;
-            let Some(head) = lane.head_arrival().filter(|_| j != i) else {
-                continue;
-            };
-            // a folded top lane's arrivals are already its returns
-            let towards = lane.folded || (lane.direction == Direction::Up) == (j < i);
-            let mut at = reach(j, towards, head);
-            if self.blocks.answers(
-                i,
-                j,
-                if lane.folded {
-                    Direction::Down
-                } else {
-                    lane.direction
-                },
-            ) {
-                at -= self.blocks.margin;
-            }
-            earliest = earlier(earliest, at);
-            if !(taking && towards && j.abs_diff(i) == 1) {
-                others = earlier(others, at);
-            }
-        }
-        // a block's ports may deliver from a little before now on (an
-        // arrival and its response are each split onto the port's
-        // lattice), and whatever passes a block may come out that much
-        // earlier than the layers' transits say (`block.rs`)
-        if !self.blocks.list.is_empty() {
-            let margin = self.blocks.margin;
-            for block in &self.blocks.list {
-                for port in &block.ports {
-                    let (j, dir) = port.out;
-                    let towards = (dir == Direction::Up) == (j < i);
-                    let at = reach(j, towards, self.now + transit(j));
-                    earliest = earlier(earliest, at - margin);
-                    others = earlier(others, at - margin);
-                }
-            }
-        }
-        // a landing bottom starts a front at the wall (its other fronts
-        // reach the wall as a lane's fronts going down, counted above)
-        if i > 0
-            && let Some(land) = self.queue.time_of(EventKey::Reconnection)
-        {
-            let at = (0..i).fold(land, |at, m| at + transit(m));
-            earliest = earlier(earliest, at);
-            others = earlier(others, at);
-        }
-        (earliest, others)
     }
 
     /// Geometric sums, remembered within a leap: the fronts of a quiet

@@ -247,6 +247,58 @@ fn leaps_taking_arrivals_agree_with_the_event_loop_to_rounding() {
     );
 }
 
+/// The bottom's leaps taking in the arrivals from above
+/// (`Tracer::arrivals_slack`: the wall's decisions bounded with what they
+/// could add), made to in exact runs, against the event loop: in contact
+/// and in flight, chattering or not, nothing but rounding may change, and
+/// above all no contact decision. Stiff bottoms 30 to 1000 times faster
+/// than the one to three layers over them; the layers above never leap (a
+/// neighbour's round trip is under eight of their transits), so every
+/// arrival taken is the bottom's.
+#[test]
+fn bottom_leaps_taking_arrivals_agree_with_the_event_loop_to_rounding() {
+    let mut rng = XorShift(0x000b_0770_0000_0011);
+    let taking = WaveConfig {
+        resolution: Resolution::Exact,
+        precision: impact_wave::Precision::Double,
+        leap_arrivals: LeapArrivals::Always,
+        max_events: 4 * EXACT_EVENTS,
+        ..WaveConfig::default()
+    };
+    let (mut took, mut compared, mut worst) = (0, 0, 0.0f64);
+    for layers in 2..=4 {
+        for ratio in [30.0, 200.0, 1000.0] {
+            for _ in 0..2 {
+                let rod = fast_between(&mut rng, layers, 0, ratio);
+                let label = format!("bottom of {layers}, {ratio}x faster");
+                let Some(loop_run) = exact_run(&rod, EXACT_EVENTS, false) else {
+                    eprintln!("{label}: the loop needs over {EXACT_EVENTS} events");
+                    continue;
+                };
+                let leaping = match simulate(&rod, &taking) {
+                    Ok(o) => o,
+                    Err(WaveError::EventLimit { .. }) => continue,
+                    Err(e) => panic!("{label}: {e}"),
+                };
+                let mut engine = WaveEngine::new(&rod, taking.clone()).expect("a valid rod");
+                engine.run().expect("it finished once");
+                compared += 1;
+                took += usize::from(engine.arrivals_taken() > 0);
+                let share = assert_agrees_with_the_loop(&label, &leaping, &loop_run);
+                worst = worst.max(share);
+                eprintln!(
+                    "{label}: {} separations, {} arrivals taken, {share:.3} of the bounds",
+                    leaping.separations,
+                    engine.arrivals_taken()
+                );
+            }
+        }
+    }
+    eprintln!("{compared} rods compared, {took} took arrivals, worst {worst:.3} of the bounds");
+    assert!(compared >= 14, "only {compared} rods compared");
+    assert!(took >= 10, "only {took} bottoms took arrivals");
+}
+
 /// After every leap that takes arrivals, the fields the fronts carry keep
 /// the balances: in exact runs (made to take them) the rod's energy; in
 /// merged runs (where they take them by default) the momentum the wall's

@@ -182,6 +182,7 @@ impl<R: Real> Tracer<R> {
             leap_work: 0,
             leap_after: crate::leap::first_leaps(&layers, fold),
             leap_retry: vec![0; n],
+            bottom_weighs_after: 0,
             deposits: room.deposits,
             exact_trains: room.exact_trains,
             sums_memo: Vec::new(),

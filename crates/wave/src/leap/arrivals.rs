@@ -19,13 +19,22 @@
 //! as the event at the interface would send them. The window then grows to
 //! about a neighbour's transit (about 75 of the layer's transits there).
 //!
-//! Only merged runs take arrivals by default, and only above the bottom
-//! layer: an exact run's neighbours are not lattices, so its trains are
-//! spawned front by front and a longer window saves nothing; the bottom's
-//! wall decisions are found over the phases present when the leap begins.
-//! [`LeapArrivals::Always`] makes exact runs take them too, which tests
-//! the bookkeeping against the event loop to rounding
-//! (`tests/leaps.rs`).
+//! The bottom takes them too. Its wall decisions are found in closed form
+//! over the fronts it holds when the leap begins, and an arrival's ringing
+//! can move the wall's strain (or the bottom's velocity) only so far, of
+//! its own sign ([`Tracer::arrivals_slack`]): the decisions are sought
+//! with that much taken off, so a leap that takes arrivals stops before
+//! any decision they could bring, and falls back on the window without
+//! them where the bound comes too near. The loop still takes every
+//! decision. A fast bottom under a lattice lane hears from it every cell:
+//! before this it rang in the loop (layer survey seed 3's rod 31, a bottom
+//! of `1.3e-5` under `2.9e-4`: 8 M of the third level's 13 M loop steps).
+//!
+//! Only merged runs take arrivals by default: an exact run's neighbours
+//! are not lattices, so its trains are spawned front by front and a
+//! longer window saves nothing. [`LeapArrivals::Always`] makes exact runs
+//! take them too, which tests the bookkeeping, and the bottom's bound,
+//! against the event loop to rounding (`tests/leaps.rs`).
 
 use super::{Ends, Phase};
 use crate::config::LeapArrivals;
@@ -34,6 +43,7 @@ use crate::error::WaveError;
 use crate::lane::{Direction, Lane, MergeRule};
 use crate::leap::Train;
 use crate::real::Real;
+use crate::wall::ContactState;
 
 /// How many times the loop's work a leap that takes arrivals must save: a
 /// leap's unit of work takes longer than a loop event, and a leap has its
@@ -66,14 +76,75 @@ impl<R: Real> Default for Taken<R> {
 }
 
 impl<R: Real> Tracer<R> {
-    /// Whether a leap of layer `i` may take its neighbours' arrivals.
-    pub(super) fn takes_arrivals(&self, i: usize) -> bool {
-        i > 0
-            && match self.leap_arrivals {
-                LeapArrivals::Never => false,
-                LeapArrivals::Merged => self.merged,
-                LeapArrivals::Always => true,
+    /// Whether a leap may take its neighbours' arrivals.
+    pub(super) fn takes_arrivals(&self) -> bool {
+        match self.leap_arrivals {
+            LeapArrivals::Never => false,
+            LeapArrivals::Merged => self.merged,
+            LeapArrivals::Always => true,
+        }
+    }
+
+    /// The most the arrivals a leap of the bottom would take in before
+    /// `horizon` can move the wall towards a decision, whatever else rings
+    /// there. An arrival's transmitted jump `d` reaches the wall at
+    /// `s + t_0` and returns with `d q^k`: the wall sees the partial sums
+    /// `d (1 + q + ... + q^k)`, each of the sign of `d` and at most
+    /// `|d| / (1 - q)` for `q > 0`, `|d|` for `q <= 0`. In contact a
+    /// tensile `d` adds at most twice that to the strain; in flight a
+    /// downward `d` takes at most twice that, times the bottom's wave
+    /// speed, off the velocity, from its arrival to the horizon. With this
+    /// subtracted, [`Tracer::wall_stop`] finds the decisions of the
+    /// bottom's own fronts as before, so a leap that takes arrivals never
+    /// passes one (it falls back on the window without them where the
+    /// bound comes too near).
+    ///
+    /// Scanning stops once the slack reaches `limit` (what the wall has
+    /// now: the contact strain's distance from a decision, the height):
+    /// then no leap can take them. Returns the slack (at least `limit`
+    /// where it stopped) and how many fronts were looked at (a failed try
+    /// holds off the next for that many loop events).
+    pub(super) fn arrivals_slack(&self, horizon: R, ti: R, q: R, limit: R) -> (R, usize) {
+        let Some(from) = self.from_above.get(1).copied().flatten() else {
+            return (R::zero(), 0);
+        };
+        let lane = &self.lanes[from];
+        let k = self.interfaces[0];
+        let two = R::of(2.0);
+        let most = if q > R::zero() {
+            R::one() / (R::one() - q)
+        } else {
+            R::one()
+        };
+        let in_contact = matches!(self.contact, ContactState::InContact { .. });
+        let c0 = self.layers[0].wave_speed;
+        // (a lattice lane's fronts are in birth order but for a lattice
+        // cell: none born after `horizon` plus a cell arrives before it)
+        let last = match lane.rule {
+            MergeRule::Lattice { spacing, .. } => horizon + spacing + spacing,
+            MergeRule::Simultaneous { .. } => horizon,
+        } - lane.transit;
+        let (mut slack, mut scanned) = (R::zero(), 0);
+        for f in lane.fronts() {
+            if f.born > last || slack >= limit {
+                break;
             }
+            scanned += 1;
+            let at = lane.arrival_of(f.born);
+            let d = k.down_transmitted * lane.delivered(f.jump);
+            slack = if at >= horizon {
+                slack
+            } else if in_contact && d > R::zero() {
+                slack + two * d * most
+            } else if !in_contact && d < R::zero() {
+                let left = horizon - (at + ti);
+                let left = if left > R::zero() { left } else { R::zero() };
+                slack - two * c0 * d * most * left
+            } else {
+                slack
+            };
+        }
+        (slack, scanned)
     }
 
     /// Whether a leap of layer `i` over `window` (from now) pays for

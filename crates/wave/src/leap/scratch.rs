@@ -84,6 +84,7 @@ pub(crate) struct Work<R> {
     pub(super) same: Vec<Train<R>>,
     pub(super) members: Vec<Member<R>>,
     pub(super) by_r: Vec<(R, usize)>,
+    pub(super) by_end: Vec<(u64, R, usize)>,
     pub(super) rank: Vec<usize>,
     pub(super) sorted_r: Vec<R>,
     pub(super) tree: Vec<(R, R)>,
@@ -95,6 +96,7 @@ impl<R> Default for Work<R> {
             same: Vec::new(),
             members: Vec::new(),
             by_r: Vec::new(),
+            by_end: Vec::new(),
             rank: Vec::new(),
             sorted_r: Vec::new(),
             tree: Vec::new(),
@@ -121,6 +123,7 @@ impl<R> TogetherRoom<R> {
         w.same.clear();
         w.members.clear();
         w.by_r.clear();
+        w.by_end.clear();
         w.rank.clear();
         w.sorted_r.clear();
         w.tree.clear();
@@ -136,6 +139,7 @@ impl<R> TogetherRoom<R> {
             + vec_bytes(&w.same)
             + vec_bytes(&w.members)
             + vec_bytes(&w.by_r)
+            + vec_bytes(&w.by_end)
             + vec_bytes(&w.rank)
             + vec_bytes(&w.sorted_r)
             + vec_bytes(&w.tree)

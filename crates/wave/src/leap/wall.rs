@@ -13,7 +13,7 @@ use crate::wall::ContactState;
 impl<R: Real> Tracer<R> {
     /// How close to tensile a contact strain may come inside a leap: an
     /// exact run's loop takes the near-grazing decisions.
-    fn leap_threshold(&self) -> R {
+    pub(super) fn leap_threshold(&self) -> R {
         if self.merged {
             self.grazing_strain
         } else {
@@ -72,7 +72,18 @@ impl<R: Real> Tracer<R> {
     /// The earliest time the wall could decide something: in contact, the
     /// first return making the wall strain grazing or tensile; in flight,
     /// the earliest the bottom could come down, from its lowest velocity.
-    pub(super) fn wall_stop(&self, phases: &[Phase<R>], q: R, period: R, horizon: R) -> R {
+    /// `slack` is what the arrivals the leap takes in could add at most
+    /// (`Tracer::arrivals_slack`): to the strain in contact, to the fall of
+    /// the height in flight. The phases are the layer's own fronts, sorted,
+    /// within a round trip of now (none only when the leap takes arrivals).
+    pub(super) fn wall_stop(
+        &self,
+        phases: &[Phase<R>],
+        q: R,
+        period: R,
+        horizon: R,
+        slack: R,
+    ) -> R {
         let two = R::of(2.0);
         let one = R::one();
         let total: R = phases.iter().fold(R::zero(), |s, p| s + p.amp);
@@ -83,7 +94,10 @@ impl<R: Real> Tracer<R> {
                 let c0 = strain + two * limit;
                 let mut prefix = R::zero();
                 let mut stop = horizon;
-                let threshold = self.leap_threshold();
+                let threshold = self.leap_threshold() + slack;
+                if slack > R::zero() && strain >= -threshold {
+                    return self.now;
+                }
                 // The first two returns of every phase by hand, as
                 // `first_crossing` evaluates them (`C0 + C_p q^k`): in a
                 // chatter the next decision comes within them, and a try
@@ -126,6 +140,18 @@ impl<R: Real> Tracer<R> {
                 // f0_p + beta k + gamma_p (q^k - 1): its first zero is where
                 // the bottom has landed (DESIGN: the loop then lands it)
                 let c0 = self.layers[0].wave_speed;
+                let height = height - slack;
+                if slack > R::zero() && height <= R::zero() {
+                    return self.now;
+                }
+                if phases.is_empty() {
+                    // falling at a constant velocity until the horizon
+                    let fall = -velocity * (horizon - at);
+                    return match fall >= height {
+                        true => at + height / -velocity,
+                        false => horizon,
+                    };
+                }
                 let gap = one - q;
                 let moment: R = phases.iter().fold(R::zero(), |s, p| s + p.amp * p.tau);
                 let beta = period * (velocity + two * c0 * total / gap);

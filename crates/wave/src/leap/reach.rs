@@ -1,0 +1,86 @@
+//! How soon anything from outside can reach a leaping layer: the end of
+//! its quiet window.
+
+use crate::engine::Tracer;
+use crate::lane::{Direction, Lane};
+use crate::queue::EventKey;
+use crate::real::Real;
+
+impl<R: Real> Tracer<R> {
+    /// The earliest any front outside layer `i` can reach it: one going
+    /// towards it after crossing the layers between, one going away after
+    /// a reflection at its own layer's far end as well (at an interface,
+    /// the free top or the wall; any other path is longer), and the front a
+    /// landing starts at the wall. Bounding only
+    /// by the fronts going towards the layer let a neighbour's front,
+    /// reflected at its far end, come back inside the leap: the layer had
+    /// already been advanced past it (an exact lane then took a front
+    /// born before its newest; a three-layer rod lost a third of its
+    /// energy, `tests/conservation.rs`).
+    /// With `taking`, also the earliest with the fronts of the neighbours'
+    /// lanes going towards the layer left out (the leap would take them
+    /// in, `arrivals.rs`); else that is the first.
+    pub(super) fn first_from_outside(&self, i: usize, taking: bool) -> (Option<R>, Option<R>) {
+        let transit = |m: usize| self.lanes[Lane::<R>::index(m, Direction::Up)].transit;
+        let earlier = |e: Option<R>, at: R| Some(e.map_or(at, |e| if at < e { at } else { e }));
+        // when a front of layer `j` arriving at its lane's end at `head`
+        // could reach layer `i` (across the layers between, after a
+        // reflection at `j`'s far end if it goes away from `i`)
+        let reach = |j: usize, towards: bool, head: R| {
+            let between = if j < i { j + 1..i } else { i + 1..j };
+            let at = between.fold(head, |at, m| at + transit(m));
+            if towards { at } else { at + transit(j) }
+        };
+        let (mut earliest, mut others) = (None, None);
+        for lane in &self.lanes {
+            let j = lane.layer;
+            let Some(head) = lane.head_arrival().filter(|_| j != i) else {
+                continue;
+            };
+            // a folded top lane's arrivals are already its returns
+            let towards = lane.folded || (lane.direction == Direction::Up) == (j < i);
+            let mut at = reach(j, towards, head);
+            if self.blocks.answers(
+                i,
+                j,
+                if lane.folded {
+                    Direction::Down
+                } else {
+                    lane.direction
+                },
+            ) {
+                at -= self.blocks.margin;
+            }
+            earliest = earlier(earliest, at);
+            if !(taking && towards && j.abs_diff(i) == 1) {
+                others = earlier(others, at);
+            }
+        }
+        // a block's ports may deliver from a little before now on (an
+        // arrival and its response are each split onto the port's
+        // lattice), and whatever passes a block may come out that much
+        // earlier than the layers' transits say (`block.rs`)
+        if !self.blocks.list.is_empty() {
+            let margin = self.blocks.margin;
+            for block in &self.blocks.list {
+                for port in &block.ports {
+                    let (j, dir) = port.out;
+                    let towards = (dir == Direction::Up) == (j < i);
+                    let at = reach(j, towards, self.now + transit(j));
+                    earliest = earlier(earliest, at - margin);
+                    others = earlier(others, at - margin);
+                }
+            }
+        }
+        // a landing bottom starts a front at the wall (its other fronts
+        // reach the wall as a lane's fronts going down, counted above)
+        if i > 0
+            && let Some(land) = self.queue.time_of(EventKey::Reconnection)
+        {
+            let at = (0..i).fold(land, |at, m| at + transit(m));
+            earliest = earlier(earliest, at);
+            others = earlier(others, at);
+        }
+        (earliest, others)
+    }
+}
