@@ -178,6 +178,19 @@ fn fast_between(rng: &mut XorShift, layers: usize, fast: usize, ratio: f64) -> R
     with_transits(rng, &transits)
 }
 
+/// An exact double-precision run whose leaps take every arrival, whatever
+/// it costs (births are spawned one by one in an exact run, so taking may
+/// cost more than the loop): what is set against the event loop.
+fn taking_every_arrival() -> WaveConfig {
+    WaveConfig {
+        resolution: Resolution::Exact,
+        precision: impact_wave::Precision::Double,
+        leap_arrivals: LeapArrivals::Always,
+        max_events: 4 * EXACT_EVENTS,
+        ..WaveConfig::default()
+    }
+}
+
 /// Leaps that take in their neighbours' arrivals (`leap/arrivals.rs`),
 /// made to in exact runs (`LeapArrivals::Always`), against the event loop:
 /// the arrivals' reflections and transmissions, the layer's bases, a
@@ -200,15 +213,7 @@ fn leaps_taking_arrivals_agree_with_the_event_loop_to_rounding() {
         let rod = random_rod(&mut rng);
         rods.push((format!("random rod {}", rods.len()), rod));
     }
-    let taking = WaveConfig {
-        resolution: Resolution::Exact,
-        precision: impact_wave::Precision::Double,
-        leap_arrivals: LeapArrivals::Always,
-        // (forced, taking may cost more than the loop: births are spawned
-        // one by one in an exact run)
-        max_events: 4 * EXACT_EVENTS,
-        ..WaveConfig::default()
-    };
+    let taking = taking_every_arrival();
     let (mut took, mut compared) = (0, 0);
     let mut worst: f64 = 0.0;
     for (label, rod) in &rods {
@@ -258,13 +263,7 @@ fn leaps_taking_arrivals_agree_with_the_event_loop_to_rounding() {
 #[test]
 fn bottom_leaps_taking_arrivals_agree_with_the_event_loop_to_rounding() {
     let mut rng = XorShift(0x000b_0770_0000_0011);
-    let taking = WaveConfig {
-        resolution: Resolution::Exact,
-        precision: impact_wave::Precision::Double,
-        leap_arrivals: LeapArrivals::Always,
-        max_events: 4 * EXACT_EVENTS,
-        ..WaveConfig::default()
-    };
+    let taking = taking_every_arrival();
     let (mut took, mut compared, mut worst) = (0, 0, 0.0f64);
     for layers in 2..=4 {
         for ratio in [30.0, 200.0, 1000.0] {
