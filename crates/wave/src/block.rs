@@ -26,10 +26,12 @@ use crate::engine::LayerConst;
 use crate::lane::Direction;
 use crate::real::Real;
 use impact_model::InterfaceCoefficients;
+use inputs::LatticeInputs;
 use std::collections::VecDeque;
 
 mod choice;
 mod flow;
+mod inputs;
 mod response;
 
 pub(crate) use choice::{apart, candidates, pays};
@@ -49,9 +51,8 @@ pub(crate) struct Port<R> {
     pub out: (usize, Direction),
     /// Its lane's lattice spacing.
     pub spacing: R,
-    /// Arrivals on this port's lattice, per input port: point and jump,
-    /// oldest first.
-    arrivals: Vec<VecDeque<(i64, R)>>,
+    /// Arrivals on this port's lattice, per input port.
+    arrivals: Vec<LatticeInputs<R>>,
     /// The next lattice point to deliver.
     next: i64,
     /// Fronts to deliver at their exact times (the responses' large
@@ -110,7 +111,7 @@ impl<R: Real> Block<R> {
                 boundary: if o == 0 { lower } else { upper + 1 },
                 out,
                 spacing: shape.port_spacing[o],
-                arrivals: vec![VecDeque::new(); outs.len()],
+                arrivals: vec![LatticeInputs::default(); outs.len()],
                 next: i64::MIN,
                 exact: VecDeque::new(),
                 key_layer: if o == 0 { lower } else { upper },
@@ -166,7 +167,7 @@ impl<R: Real> Block<R> {
             let k = (t / h).floor();
             let f = (t - k * h) / h;
             let k = k.to_f64() as i64;
-            if self.ports[o].arrivals.iter().all(VecDeque::is_empty) {
+            if self.ports[o].arrivals.iter().all(LatticeInputs::is_empty) {
                 self.ports[o].next = self.ports[o].next.max(k);
             }
             for (k, a) in [(k, d * (R::one() - f)), (k + 1, d * f)] {
@@ -179,7 +180,7 @@ impl<R: Real> Block<R> {
                         late.push((o, R::of(idx as f64) * h, a * c));
                     }
                 }
-                self.ports[o].arrivals[input].push_back((k, a));
+                self.ports[o].arrivals[input].add(k, a);
             }
         }
         work
@@ -196,27 +197,19 @@ impl<R: Real> Block<R> {
             let mut sum = R::zero();
             for (j, trace) in self.traces.iter_mut().enumerate() {
                 let arrivals = &mut self.ports[o].arrivals[j];
-                // arrivals whose response is over at `m` are let go (an
-                // arrival's two shares are one point apart: nearly in order)
-                while let Some(&(k, _)) = arrivals.front() {
-                    if !(trace.done && m - k >= trace.taps[o].len() as i64) {
-                        break;
-                    }
-                    arrivals.pop_front();
+                // points whose response is over at `m` are let go
+                if trace.done {
+                    arrivals.let_go_before(m - trace.taps[o].len() as i64 + 1);
                 }
-                let Some(oldest) = arrivals.iter().map(|&(k, _)| k).min() else {
+                let Some(oldest) = arrivals.first() else {
                     continue;
                 };
                 if !trace.has(&self.shape, o, m - oldest) {
                     work += FRONT_ADDS * trace.extend(&self.shape, o, m - oldest);
                 }
-                let taps = &trace.taps[o];
-                for &(k, a) in arrivals.iter() {
-                    if let Some(&c) = usize::try_from(m - k).ok().and_then(|i| taps.get(i)) {
-                        sum += a * c;
-                    }
-                }
-                work += arrivals.len() as u64;
+                let (response, adds) = arrivals.response_at(m, &trace.taps[o]);
+                sum += response;
+                work += adds;
             }
             if sum != R::zero() {
                 due.push((R::of(m as f64) * h, sum));

@@ -32,6 +32,8 @@ mod record;
 mod room;
 mod runs;
 mod solve;
+#[cfg(test)]
+mod test_random;
 mod wall;
 mod window;
 

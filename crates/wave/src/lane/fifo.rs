@@ -119,6 +119,17 @@ impl<T: Copy> Fifo<T> {
         Some(item)
     }
 
+    /// Takes the `n` oldest items (all of them, if fewer).
+    #[inline]
+    pub fn skip(&mut self, n: usize) {
+        self.head += n.min(self.len());
+        if self.head == self.items.len() {
+            self.clear();
+        } else if self.head >= COMPACT_FROM && 2 * self.head >= self.items.len() {
+            self.compact();
+        }
+    }
+
     /// Drops the taken items from the vector.
     #[cold]
     fn compact(&mut self) {
@@ -191,13 +202,7 @@ mod tests {
     fn it_holds_what_a_deque_holds() {
         let mut fifo = Fifo::default();
         let mut deque = VecDeque::new();
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state
-        };
+        let mut next = crate::test_random::xorshift(0x2545_f491_4f6c_dd1du64);
         for step in 0..200_000u64 {
             let r = next();
             match r % 16 {

@@ -101,13 +101,8 @@ fn together_deposits_what_one_by_one_does() {
     let MergeRule::Lattice { spacing: w, .. } = base.lanes[lane].rule else {
         panic!("a lattice lane")
     };
-    let mut state = 0x1234_5678_9abc_def1u64;
-    let mut uniform = || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut draw = crate::test_random::xorshift(0x1234_5678_9abc_def1u64);
+    let mut uniform = || (draw() >> 11) as f64 / (1u64 << 53) as f64;
     let (mut cases, mut fewer) = (0, 0);
     for (q, period_in_cells) in [
         (0.999, 1.0 / 7.3),
@@ -170,13 +165,8 @@ fn trains_apart_ending_anywhere_and_large_at_first_deposit_the_same() {
         keep_above,
         keep_at_most: usize::MAX,
     };
-    let mut state = 0x0dd_ba11_5eed_0042u64;
-    let mut uniform = || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut draw = crate::test_random::xorshift(0x0dd_ba11_5eed_0042u64);
+    let mut uniform = || (draw() >> 11) as f64 / (1u64 << 53) as f64;
     let mut fewer = 0;
     for (q, period_in_cells) in [(0.97, 0.9), (-0.99, 1.0 / 3.1), (0.8, 2.3)] {
         let period = w * period_in_cells;
