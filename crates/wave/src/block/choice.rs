@@ -9,6 +9,11 @@ pub(crate) const FAST: f64 = 1.0 / 8.0;
 /// ringing would make the block's response last as long as the run.
 pub(crate) const LEAPS_WELL: f64 = 64.0;
 
+/// What a multiply-add of a port's sums costs, in nanoseconds: 0.33 on
+/// survey rod 12's third level (1.5 G of them in 0.5 s, dense dot products,
+/// `inputs.rs`); the first build's deque took 4.
+pub(crate) const NS_PER_ADD: f64 = 0.33;
+
 /// The candidate blocks of a rod, by its layers' transit times: runs of
 /// two or more layers above the bottom, each layer at most [`FAST`] of the
 /// shortest transit just outside the run and none that leaps well; the
@@ -52,7 +57,7 @@ pub(crate) fn candidates(transits: &[f64]) -> Vec<(usize, usize)> {
 /// a microsecond each; fewer where the lanes are not full, which cannot be
 /// foreseen); the trace follows as many fronts at a fiftieth of the price,
 /// but only while the block rings; and each lattice point a port delivers
-/// sums the arrivals still ringing, up to all of them at a nanosecond
+/// sums the arrivals still ringing, up to all of them at [`NS_PER_ADD`]
 /// each: `T / (h_out h_in)` a unit of time, the cost that grows with the
 /// run. The sums must stay under a sixty-fourth of the loop's most: at a
 /// quarter, survey rod 13 (whose loop lanes are far from full) took twice
@@ -71,7 +76,7 @@ pub(crate) fn pays(transits: &[f64], (a, b): (usize, usize)) -> bool {
     let sums: f64 = ports
         .iter()
         .flat_map(|&o| ports.iter().map(move |&i| (o, i)))
-        .map(|(o, i)| run / (spacing(o) * spacing(i)) * 1e-3)
+        .map(|(o, i)| run / (spacing(o) * spacing(i)) * NS_PER_ADD * 1e-3)
         .sum();
     sums < loop_rate / 64.0
 }
@@ -110,6 +115,24 @@ mod tests {
         let transits = [0.586, 1.57e-3, 2.67e-3, 1.02];
         assert_eq!(candidates(&transits), vec![(1, 2)]);
         assert!(!pays(&transits, (1, 2)));
+    }
+
+    /// Priced as the dense sums cost, a block the deque's sums did not pay
+    /// for: layer survey seed 3's rod 3 (layers of `2.9e-6` and `6.4e-6`
+    /// between `5.5e-3` and `0.125`), whose ladder ran 3.4 s in the loop
+    /// and 1.0 s with the block. Survey rod 13 (seed 7), whose loop lanes
+    /// are far from full and which took twice as long with its block, is
+    /// still left to the loop.
+    #[test]
+    fn the_sums_are_priced_as_dense_dot_products() {
+        let rod_3 = [0.00994, 0.00555, 2.95e-6, 6.41e-6, 0.125, 3.96e-6, 0.0416];
+        assert_eq!(candidates(&rod_3).first(), Some(&(2, 3)));
+        assert!(pays(&rod_3, (2, 3)));
+        let rod_13 = [
+            0.00174, 0.161, 0.0375, 0.000167, 1.34e-5, 0.205, 0.245, 9.18e-5,
+        ];
+        assert_eq!(candidates(&rod_13).first(), Some(&(3, 4)));
+        assert!(!pays(&rod_13, (3, 4)));
     }
 
     #[test]
