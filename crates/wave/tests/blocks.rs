@@ -138,3 +138,38 @@ fn blocks_agree_with_the_loop_where_the_block_rings_long() {
     );
     assert!(d <= bound(&on) + bound(&off));
 }
+
+/// A block that the choice takes only since its sums are priced as the
+/// dense dot products cost (`block/choice.rs`, `NS_PER_ADD`): layer survey
+/// rod 11 (seed 7), a top of two fast layers (transits `2.1e-5` and
+/// `7.2e-6`) over one of `4.6e-2`: the default run answers them as a
+/// block (1,176 loop events where the loop took 108,060) and lands within
+/// its bound of the exact engine (7.8 M events: `e` the same to 12
+/// digits).
+#[test]
+fn a_block_taken_at_the_dense_price_lands_within_its_bound() {
+    let layer = Layer::elastic;
+    let scene = Scene {
+        impact_speed: 1.0,
+        layers: vec![
+            layer(1.1785012427189727, 1205067826.1583042, 5.329053258284448),
+            layer(0.46111519722936195, 54.68950567790808, 0.5412520864675717),
+            layer(0.9719379084020312, 2593244652.673352, 1.1619429225609141),
+            layer(0.5296649950477623, 1528334115.2924802, 0.27930798145917035),
+        ],
+        wall_contact: None,
+    };
+    let rod = scene.validate().unwrap();
+    let o = simulate(&rod, &WaveConfig::default()).expect("an outcome");
+    assert!(answered(&o), "{o:?}");
+    let x = exact_run(&rod, 10_000_000, true).expect("the exact run fits");
+    let d = (o.restitution - x.restitution).abs();
+    eprintln!(
+        "block e = {:.12} ± {:.1e}, exact {:.12} ± {:.1e}, |d| = {d:.1e}",
+        o.restitution,
+        bound(&o),
+        x.restitution,
+        bound(&x)
+    );
+    assert!(d <= bound(&o) + bound(&x));
+}
