@@ -19,6 +19,21 @@ fn answered(o: &Outcome) -> bool {
         .is_some_and(|e| !e.answered_blocks.is_empty() && e.method.contains("as one block"))
 }
 
+/// The rod of these elastic layers (length, modulus, density; bottom
+/// first) at unit impact speed.
+fn rod_of(layers: &[(f64, f64, f64)]) -> Rod {
+    Scene {
+        impact_speed: 1.0,
+        layers: layers
+            .iter()
+            .map(|&(l, e, rho)| Layer::elastic(l, e, rho))
+            .collect(),
+        wall_contact: None,
+    }
+    .validate()
+    .expect("a valid rod")
+}
+
 /// A merged run (the ladder) even where the exact run would fit, with or
 /// without blocks.
 fn ladder(rod: &Rod, fast_blocks: bool) -> Outcome {
@@ -108,22 +123,16 @@ fn blocks_land_within_their_bound_of_the_exact_value() {
 /// within their bounds.
 #[test]
 fn blocks_agree_with_the_loop_where_the_block_rings_long() {
-    let layer = Layer::elastic;
     // survey rod 20 (seed 7): a slow bottom under four fast layers and a
     // top a hundred times slower than them
-    let scene = Scene {
-        impact_speed: 1.0,
-        layers: vec![
-            layer(0.4954541110415926, 188.6900167559795, 8.347365412239864),
-            layer(1.1185481502738823, 9414877211.070044, 0.28648883899932903),
-            layer(0.2840612669703682, 25979164416.074642, 0.3498170036734888),
-            layer(0.38155139141117106, 22329567728.11959, 3.247529431968498),
-            layer(1.0495878272608952, 505785077767.1679, 2.248781579086109),
-            layer(0.6059478279156085, 1780693.6578908376, 1.1835804440683804),
-        ],
-        wall_contact: None,
-    };
-    let rod = scene.validate().unwrap();
+    let rod = rod_of(&[
+        (0.4954541110415926, 188.6900167559795, 8.347365412239864),
+        (1.1185481502738823, 9414877211.070044, 0.28648883899932903),
+        (0.2840612669703682, 25979164416.074642, 0.3498170036734888),
+        (0.38155139141117106, 22329567728.11959, 3.247529431968498),
+        (1.0495878272608952, 505785077767.1679, 2.248781579086109),
+        (0.6059478279156085, 1780693.6578908376, 1.1835804440683804),
+    ]);
     let on = ladder(&rod, true);
     let off = ladder(&rod, false);
     assert!(answered(&on), "{on:?}");
@@ -148,18 +157,12 @@ fn blocks_agree_with_the_loop_where_the_block_rings_long() {
 /// digits).
 #[test]
 fn a_block_taken_at_the_dense_price_lands_within_its_bound() {
-    let layer = Layer::elastic;
-    let scene = Scene {
-        impact_speed: 1.0,
-        layers: vec![
-            layer(1.1785012427189727, 1205067826.1583042, 5.329053258284448),
-            layer(0.46111519722936195, 54.68950567790808, 0.5412520864675717),
-            layer(0.9719379084020312, 2593244652.673352, 1.1619429225609141),
-            layer(0.5296649950477623, 1528334115.2924802, 0.27930798145917035),
-        ],
-        wall_contact: None,
-    };
-    let rod = scene.validate().unwrap();
+    let rod = rod_of(&[
+        (1.1785012427189727, 1205067826.1583042, 5.329053258284448),
+        (0.46111519722936195, 54.68950567790808, 0.5412520864675717),
+        (0.9719379084020312, 2593244652.673352, 1.1619429225609141),
+        (0.5296649950477623, 1528334115.2924802, 0.27930798145917035),
+    ]);
     let o = simulate(&rod, &WaveConfig::default()).expect("an outcome");
     assert!(answered(&o), "{o:?}");
     let x = exact_run(&rod, 10_000_000, true).expect("the exact run fits");
