@@ -199,6 +199,20 @@ pub(crate) fn check(
 }
 
 impl Scene {
+    /// A stack of elastic layers `(length, modulus, density)`, bottom
+    /// first, hitting the wall at `impact_speed` under the paper's contact
+    /// law (not yet validated).
+    pub fn elastic_stack(impact_speed: f64, layers: &[(f64, f64, f64)]) -> Self {
+        Self {
+            impact_speed,
+            layers: layers
+                .iter()
+                .map(|&(length, modulus, density)| Layer::elastic(length, modulus, density))
+                .collect(),
+            wall_contact: None,
+        }
+    }
+
     /// Parses a scene from JSON text; unknown fields are errors.
     pub fn from_json(text: &str) -> Result<Self, SceneError> {
         serde_json::from_str(text).map_err(|e| SceneError::Json(e.to_string()))

@@ -22,16 +22,9 @@ fn answered(o: &Outcome) -> bool {
 /// The rod of these elastic layers (length, modulus, density; bottom
 /// first) at unit impact speed.
 fn rod_of(layers: &[(f64, f64, f64)]) -> Rod {
-    Scene {
-        impact_speed: 1.0,
-        layers: layers
-            .iter()
-            .map(|&(l, e, rho)| Layer::elastic(l, e, rho))
-            .collect(),
-        wall_contact: None,
-    }
-    .validate()
-    .expect("a valid rod")
+    Scene::elastic_stack(1.0, layers)
+        .validate()
+        .expect("a valid rod")
 }
 
 /// A merged run (the ladder) even where the exact run would fit, with or

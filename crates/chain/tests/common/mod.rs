@@ -62,16 +62,7 @@ pub fn log_slope(points: &[(f64, f64)]) -> f64 {
 /// A stack of elastic layers `(length, modulus, density)`, bottom first,
 /// hitting the wall at `speed`.
 pub fn elastic_stack(speed: f64, layers: &[(f64, f64, f64)]) -> Rod {
-    Scene {
-        impact_speed: speed,
-        layers: layers
-            .iter()
-            .map(|&(l, e, rho)| Layer::elastic(l, e, rho))
-            .collect(),
-        wall_contact: None,
-    }
-    .validate()
-    .unwrap()
+    Scene::elastic_stack(speed, layers).validate().unwrap()
 }
 
 /// Beeman's chain written out plainly (six arrays, the one-sided wall
