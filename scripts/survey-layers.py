@@ -15,6 +15,7 @@ over 1 s, and how many did not finish within --timeout.
     python3 scripts/survey-layers.py --rods 100 --seed 1 --timeout 120
     IMPACT=path/to/impact python3 scripts/survey-layers.py
     python3 scripts/survey-layers.py --keep rods/    # keep the scenes (rodNNN.json)
+    python3 scripts/survey-layers.py --fast-bottom --seed 11 --timeout 60   # heavy tops, fast bottom groups
     python3 scripts/survey-layers.py --exact-events 8e6   # merged bounds against exact runs
 
 With --exact-events N, each rod whose default run merged fronts is run again
@@ -56,6 +57,30 @@ def draw(rng, speeds):
             return {"impact_speed": 1.0, "layers": layers}
 
 
+def draw_fast_bottom(rng):
+    """One rod with a group of fast layers at the bottom (--fast-bottom): a
+    bottom of transit 10^-5.5 to 10^-3.5, two or three layers 10 to 300
+    times faster on it, then one or two slow ones (10^-2 to 1); impedances
+    log-uniform over seven decades whatever the transit, so densities span
+    up to thirteen and a heavy top may ride a soft layer for many of its
+    transits."""
+    tb = 10 ** rng.uniform(-5.5, -3.5)
+    top = 10 ** rng.uniform(-2, 0)
+    fast = [tb * 10 ** rng.uniform(-2.5, -1) for _ in range(rng.randint(2, 3))]
+
+    def layer(transit):
+        impedance = 10 ** rng.uniform(-1, 6)
+        length = rng.uniform(0.2, 1.2)
+        speed = length / transit
+        density = impedance / speed
+        return {"length": length, "modulus": density * speed * speed, "density": density}
+
+    layers = [layer(tb)] + [layer(t) for t in fast] + [layer(top)]
+    if rng.random() < 0.5:
+        layers.append(layer(10 ** rng.uniform(-2, 0)))
+    return {"impact_speed": 1.0, "layers": layers}
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--rods", type=int, default=40, help="rods to draw (default 40)")
@@ -65,6 +90,8 @@ def main():
     parser.add_argument("--timeout", type=float, default=60.0, help="seconds per rod (default 60)")
     parser.add_argument("--exact-events", type=float, default=0, metavar="N",
                         help="check merged rods against exact runs of at most N events (default: no check)")
+    parser.add_argument("--fast-bottom", action="store_true",
+                        help="draw rods with a group of fast layers at the bottom instead (see draw_fast_bottom)")
     parser.add_argument("--keep", type=Path, metavar="DIR",
                         help="write each rod's scene to DIR/rodNNN.json (to rerun one alone)")
     args = parser.parse_args()
@@ -84,7 +111,7 @@ def main():
     print(f"rod  layers  ratio      seconds       events  e             bound")
     with tempfile.TemporaryDirectory(prefix="impact-survey-") as work:
         for k in range(args.rods):
-            scene = draw(rng, args.speeds)
+            scene = draw_fast_bottom(rng) if args.fast_bottom else draw(rng, args.speeds)
             path = Path(work) / f"rod{k:03d}.json"
             path.write_text(json.dumps(scene))
             if args.keep:
@@ -128,7 +155,8 @@ def main():
     times.sort()
     over = sum(t > 1.0 for t in times)
     p90 = times[min(len(times) - 1, int(0.9 * len(times)))] if times else float("nan")
-    print(f"{args.rods} rods (seed {args.seed}, ratios up to 1e{args.speeds:g}); of the {len(times)} "
+    drawn = "fast bottom groups" if args.fast_bottom else f"ratios up to 1e{args.speeds:g}"
+    print(f"{args.rods} rods (seed {args.seed}, {drawn}); of the {len(times)} "
           f"that finished: median {statistics.median(times) if times else float('nan'):.2f} s, "
           f"90th percentile {p90:.2f} s, largest finished {max(times) if times else float('nan'):.2f} s; "
           f"{over} over 1 s, {unfinished} not finished within {args.timeout:g} s, {failed} failed")

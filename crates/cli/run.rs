@@ -201,6 +201,9 @@ pub fn wave_failure(e: WaveError) -> anyhow::Error {
         WaveError::EventLimit { .. } => {
             "raise --max-events, or let fronts merge with --resolution auto (the default) or merged"
         }
+        WaveError::LatticeLimit { .. } => {
+            "raise --max-events: a merged run's work grows with how long the contact lasts"
+        }
         WaveError::TimeLimit { .. } => "stop at a horizon with --horizon FACTOR",
         WaveError::Unfinished { .. } => {
             "raise --horizon, or drop it for the exact escape rule; no restitution is reported"

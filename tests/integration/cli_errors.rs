@@ -120,6 +120,40 @@ fn bad_sweeps_write_no_file() {
     assert!(files_in(&dir).is_empty(), "{:?}", files_in(&dir));
 }
 
+/// A heavy top on a soft layer over light fast layers at the bottom: the
+/// contact lasts about 22 time units and the fastest layer rings every
+/// `2.1e-7`, so even the merged ladder's coarsest run spends the events
+/// it is given (`crates/wave/tests/hard_cases.rs` says why). The message
+/// names the merged run and the flag that helps, not the merging that was
+/// already done.
+#[test]
+fn a_merged_run_that_cannot_finish_names_the_event_limit() {
+    let dir = scratch("long-contact");
+    let path = dir.join("hammer.json");
+    std::fs::write(
+        &path,
+        r#"{"impact_speed": 1, "layers": [
+            {"length": 0.449, "modulus": 636000, "density": 0.00904},
+            {"length": 0.482, "modulus": 45400, "density": 9.89e-7},
+            {"length": 1.17, "modulus": 2.84e9, "density": 9.55e-5},
+            {"length": 0.338, "modulus": 4.11, "density": 0.0475},
+            {"length": 0.722, "modulus": 212000, "density": 859}]}"#,
+    )
+    .unwrap();
+    let out = impact_words("run --max-events 1e6 --json", &[path.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stdout(&out).is_empty());
+    let err = stderr(&out);
+    assert!(
+        err.contains("--max-events")
+            && err.contains("merged run on the lattice of 0.2")
+            && err.contains("events per unit of time")
+            && !err.contains("--resolution"),
+        "{err}"
+    );
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+}
+
 #[test]
 fn a_run_that_cannot_finish_says_why_with_status_1() {
     // exact fronts only, and too few events for a scene whose fronts multiply

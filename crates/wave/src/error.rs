@@ -29,6 +29,21 @@ pub enum WaveError {
         /// Time reached, in the scene's units.
         time: f64,
     },
+    /// A merged run needed for the error bound spent `max_events` before the
+    /// rod left for good: merging bounds the fronts a lane holds, not how
+    /// long the contact lasts, and the fastest layers ring through all of it.
+    #[error(
+        "the merged run on the lattice of {per_transit} of each transit stopped after {events} events at t = {time:.6e}, before the rod left for good (about {:.1e} events per unit of time), and the error bound needs that run: merging bounds the fronts each lane holds, not how long the fastest layers ring through a long contact; allow more events",
+        *events as f64 / time
+    )]
+    LatticeLimit {
+        /// Events processed (the work a merged run counts).
+        events: u64,
+        /// Time reached, in the scene's units.
+        time: f64,
+        /// The lattice spacing, as a fraction of each transit.
+        per_transit: f64,
+    },
     /// The time limit `max_time_factor * sum(t_i)` was passed before the rod left for good.
     #[error(
         "run reached t = {time:.6e} (the time limit) without the rod leaving for good; raise the time limit or stop at a horizon"
@@ -57,4 +72,19 @@ pub enum WaveError {
         /// Time the event was scheduled for, in internal units.
         requested: f64,
     },
+}
+
+impl WaveError {
+    /// A merged run's event limit as [`WaveError::LatticeLimit`] on the
+    /// lattice `per_transit`; any other error as it is.
+    pub(crate) fn on_lattice(self, per_transit: f64) -> Self {
+        match self {
+            WaveError::EventLimit { events, time } => WaveError::LatticeLimit {
+                events,
+                time,
+                per_transit,
+            },
+            e => e,
+        }
+    }
 }

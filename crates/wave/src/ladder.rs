@@ -115,11 +115,13 @@ pub(crate) fn fixed_lattice(
                 .map(|f| {
                     run::<f64>(rod, merged_at(config, f * p, f * l, max))
                         .map(|e| (e.restitution(), e.steps()))
+                        .map_err(|e| e.on_lattice(f * p))
                 })
                 .collect::<Result<Vec<_>, _>>()
         },
     );
-    let (fine, twin, coarse) = (fine?, twin?, coarse?);
+    let on = |e: WaveError| e.on_lattice(p);
+    let (fine, twin, coarse) = (fine.map_err(on)?, twin.map_err(on)?, coarse?);
     let used = fine.steps() + twin.steps() + coarse.iter().map(|c| c.1).sum::<u64>();
     let mut levels: Vec<f64> = coarse.iter().map(|c| c.0).collect();
     levels.push(fine.restitution());
@@ -181,7 +183,7 @@ pub(crate) fn ladder(
             (first, twin.flatten())
         },
     );
-    let first = first?;
+    let first = first.map_err(|e| e.on_lattice(p0))?;
     let mut levels = vec![first.restitution()];
     let mut used = first.steps();
     observe(LadderProgress::LevelDone {
@@ -191,13 +193,13 @@ pub(crate) fn ladder(
         bound: 0.0,
         work: used,
     });
-    let second = second?;
+    let second = second.map_err(|e| e.on_lattice(p1))?;
     used += second.steps();
     levels.push(second.restitution());
     // a twin that was not needed is dropped, finished or not, failed or
     // not (how far it got depends on the threads' timing)
     let twin = if too_long(&second) {
-        twin.transpose()?
+        twin.transpose().map_err(|e| e.on_lattice(p1))?
     } else {
         None
     };
@@ -318,7 +320,8 @@ impl Coarser {
             } => {
                 let twin = match twin {
                     Some(twin) => *twin,
-                    None => run::<f64>(twin_rod, merged_at(config, p, l, max))?,
+                    None => run::<f64>(twin_rod, merged_at(config, p, l, max))
+                        .map_err(|e| e.on_lattice(p))?,
                 };
                 let perturbed = (engine.restitution() - twin.restitution()).abs();
                 let check = merge_check(&levels, perturbed, p, l, used + twin.steps());
