@@ -134,7 +134,8 @@ pub(crate) fn fixed_lattice(
 /// perturbed twin, until the bound is at most `target`, the next level
 /// would not fit the budget of work (see [`WaveEngine::steps`]), or the lattice reaches
 /// [`FINEST`]; at least [`MIN_LEVELS`] levels are run, whatever they cost
-/// (every scene finishes). The finest level is reported; if a level cannot
+/// (a scene finishes once two levels fit `max_events`; if they do not,
+/// [`WaveError::LatticeLimit`]). The finest level is reported; if a level cannot
 /// finish within `max_events`, the finest before it is, with what its
 /// comparisons say (two levels at least).
 ///
@@ -233,8 +234,8 @@ pub(crate) fn ladder(
         );
         let (fine, twin) = match (fine, twin) {
             (Ok(fine), Ok(twin)) => (fine, twin),
-            // a level past --max-events: the finest level that finished is
-            // reported (every scene finishes), and the method says on how
+            // a level past `max_events`: the finest level that finished is
+            // reported (the scene finishes), and the method says on how
             // little
             (Err(WaveError::EventLimit { .. }), _) | (_, Err(WaveError::EventLimit { .. })) => {
                 let note = format!(
