@@ -54,13 +54,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let v = e * rod.impact_speed();
     let mass = rod.mass();
     let internal = 0.5 * mass * (rod.impact_speed().powi(2) - v * v);
-    // the compliance moment `integral m(s)^2 / E ds` in the scene's units
-    let (mut above, mut moment) = (0.0f64, 0.0);
-    for l in scene.layers.iter().rev() {
-        let below = above + l.density * l.length;
-        moment += (below.powi(3) - above.powi(3)) / (3.0 * l.density * l.modulus);
-        above = below;
-    }
+    // the model's compliance moment `integral m(s)^2 / E ds`, in the
+    // scene's units (it scales as mass^2 * length / modulus)
+    let u = rod.units();
+    let moment = rod.scaled_compliance_moment() * u.density.powi(2) * u.length.powi(3) / u.modulus;
     let bound = EscapeBound::new(moment, mass);
     let reach = bound.reach(internal, Margin::relative(0.0));
     let Some(&(start, _)) = flight.first() else {
