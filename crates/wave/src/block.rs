@@ -34,12 +34,17 @@ mod flow;
 mod inputs;
 mod response;
 
-pub(crate) use choice::{apart, candidates, pays};
+pub(crate) use choice::{allowance, apart, candidates, pays};
 pub(crate) use response::{Shape, Trace};
 
 /// A traced front's price in a port's multiply-adds (the work counted, see
 /// `flow.rs`): about sixty nanoseconds against one.
 pub(crate) const FRONT_ADDS: u64 = 64;
+
+/// The most lattice points of its lower port a block's responses are
+/// traced over to see whether they ring out (`Block::rings_out_within`):
+/// a few megabytes of taps.
+const PROBE_CELLS: i64 = 1 << 20;
 
 /// One port: where the block meets a slower neighbour, and the arrivals
 /// whose responses it still delivers into the neighbour's lane.
@@ -125,6 +130,19 @@ impl<R: Real> Block<R> {
             ports,
             owed: vec![(0.0, 0.0); outs.len()],
         }
+    }
+
+    /// Whether every input's response is over within `length` of its
+    /// arrival, traced that far at most (and never past
+    /// [`PROBE_CELLS`] of the lower port's lattice); the fronts followed.
+    pub(crate) fn rings_out_within(&mut self, length: R) -> (bool, u64) {
+        let h = self.shape.port_spacing[0];
+        let cells = (length / h).ceil().to_f64().min(PROBE_CELLS as f64) as i64;
+        let mut followed = 0;
+        for trace in &mut self.traces {
+            followed += trace.extend(&self.shape, 0, cells);
+        }
+        (self.traces.iter().all(|t| t.done), followed)
     }
 
     /// Response tap `i` of input `j` at port `o`, traced if need be; the

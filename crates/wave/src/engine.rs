@@ -354,7 +354,7 @@ impl<R: Real> Tracer<R> {
         }
         if self.steps() >= self.max_events {
             return Err(WaveError::EventLimit {
-                events: self.events(),
+                events: self.steps(),
                 time: self.time(),
             });
         }

@@ -24,7 +24,8 @@ pub enum WaveError {
         "run stopped after {events} events at t = {time:.6e} without the rod leaving for good: fronts multiply in this scene; use the automatic or merged resolution, or allow more events"
     )]
     EventLimit {
-        /// Events processed.
+        /// The work counted against `max_events`: the loop's events, and
+        /// what leaps and blocks did in their stead.
         events: u64,
         /// Time reached, in the scene's units.
         time: f64,
@@ -37,7 +38,8 @@ pub enum WaveError {
         *events as f64 / time
     )]
     LatticeLimit {
-        /// Events processed (the work a merged run counts).
+        /// The work counted against `max_events`: the loop's events, and
+        /// what leaps and blocks did in their stead.
         events: u64,
         /// Time reached, in the scene's units.
         time: f64,

@@ -630,11 +630,16 @@ fn ladder_level(rod: &impact_model::Rod, k: usize) -> (f64, u64) {
 /// bottom (transits `5.4e-5`, `2.2e-6` and `2.1e-7` under `3.6e-2` and
 /// `4.6e-2`; the top's mass is 620, the rest weighs 0.02): the top rides
 /// the soft layer as a mass on a spring, `pi sqrt(M / k)` about 22 time
-/// units, while the fastest layer rings every `2.1e-7`. Merged, each lane
-/// holds a few fronts, but the coarsest lattice still takes about `5e7`
-/// events a unit of time, so the ladder's first run cannot finish within
-/// the default `max_events`, and the error must say that it is the merged
-/// run that stopped, on which lattice, and at what rate (the exact
+/// units, while the fast layers ring every `2.1e-7` to `5.4e-5`. Merged,
+/// each lane holds a few fronts, and the two upper fast layers are
+/// answered as a block (their response rings out within a hundredth of a
+/// time unit), but the bottom, which no block holds, rings through the
+/// whole contact and the block's port on its lattice sums every arrival
+/// of the last hundredth: the second lattice takes about `1.1e7` units of
+/// work a unit of time, past the default `max_events` over the contact
+/// (`impact run SCENE --max-events 2e7 --merge-window 0.1`). The error must
+/// say that it is the merged run that stopped, on which lattice, after
+/// how much of the work `max_events` counts, and at what rate (the exact
 /// engine's error advised merging, which was already done). Such scenes
 /// need a block at the wall (the fast group answered as one while it
 /// rests on the wall), which the engine does not have.
@@ -664,19 +669,16 @@ fn a_contact_longer_than_the_event_limit_says_the_merged_run_stopped() {
         panic!("not the merged run's limit: {err}");
     };
     assert_eq!(per_transit, 0.2, "the ladder's coarsest lattice");
+    // the work counted against the limit, not the loop's events alone
+    // (the block's sums and trace are most of it)
     assert!(events >= 1_000_000 && time > 0.0, "{events} {time}");
     let msg = err.to_string();
     assert!(msg.contains("events per unit of time"), "{msg}");
     assert!(!msg.contains("--"), "a library names no flag: {msg}");
-    // the contact, a mass on the soft layer's spring, outlasts what the
-    // default limit allows at the rate the run shows
+    // stopped early in the contact, a mass on the soft layer's spring
     let (soft, top) = (layers[3], layers[4]);
     let spring = soft.1 / soft.0;
     let contact = std::f64::consts::PI * (top.0 * top.2 / spring).sqrt();
     assert!((20.0..25.0).contains(&contact), "{contact}");
-    let rate = events as f64 / time;
-    assert!(
-        rate * contact > WaveConfig::default().max_events as f64,
-        "{rate:e} events a unit of time over {contact}"
-    );
+    assert!(time < contact / 100.0, "{time} of a {contact} contact");
 }

@@ -50,35 +50,46 @@ pub(crate) fn candidates(transits: &[f64]) -> Vec<(usize, usize)> {
     runs
 }
 
-/// Whether answering block `run` by its response is expected to pay, judged
-/// on the ladder's third lattice (the least a ladder runs) over a run of
-/// eight times the rod's summed transits. The loop may take up to `2 / s`
-/// events a unit of time in each of the block's lanes (spacing `s`, about
-/// a microsecond each; fewer where the lanes are not full, which cannot be
-/// foreseen); the trace follows as many fronts at a fiftieth of the price,
-/// but only while the block rings; and each lattice point a port delivers
-/// sums the arrivals still ringing, up to all of them at [`NS_PER_ADD`]
-/// each: `T / (h_out h_in)` a unit of time, the cost that grows with the
-/// run. The sums must stay under a sixty-fourth of the loop's most: at a
-/// quarter, survey rod 13 (whose loop lanes are far from full) took twice
-/// as long. Only the speed depends on this choice, never the honesty of
-/// the result: the ladder measures the error either way.
-pub(crate) fn pays(transits: &[f64], (a, b): (usize, usize)) -> bool {
+/// The run a block is priced over: eight times the rod's summed transits.
+fn priced_run(transits: &[f64]) -> f64 {
+    8.0 * transits.iter().sum::<f64>()
+}
+
+/// How long block `run`'s response may ring for answering it to be
+/// expected to pay, judged on the ladder's third lattice (the least a
+/// ladder runs). The loop may take up to `2 / s` events a unit of time in
+/// each of the block's lanes (spacing `s`, about a microsecond each; fewer
+/// where the lanes are not full, which cannot be foreseen); the trace
+/// follows as many fronts at a fiftieth of the price, but only while the
+/// block rings; and each lattice point a port delivers sums the arrivals
+/// whose response still rings, at [`NS_PER_ADD`] each: `L / (h_out h_in)`
+/// a unit of time for a response of length `L`, which grows with the run
+/// where the block rings as long. The sums must stay under a sixty-fourth
+/// of the loop's most: at a quarter, survey rod 13 (whose loop lanes are
+/// far from full) took twice as long. Only the speed depends on this
+/// choice, never the honesty of the result: the ladder measures the error
+/// either way.
+pub(crate) fn allowance(transits: &[f64], (a, b): (usize, usize)) -> f64 {
     let (start, longest) = crate::ladder::LADDER_START;
     let t_max = transits.iter().copied().fold(0.0, f64::max);
     let spacing = |m: usize| (start / 4.0 * transits[m]).min(longest / 4.0 * t_max);
-    let run = 8.0 * transits.iter().sum::<f64>();
     let loop_rate: f64 = (a..=b).map(|m| 2.0 / spacing(m)).sum();
     let ports: Vec<usize> = [Some(a - 1), (b + 1 < transits.len()).then_some(b + 1)]
         .into_iter()
         .flatten()
         .collect();
-    let sums: f64 = ports
+    let sums_per_length: f64 = ports
         .iter()
         .flat_map(|&o| ports.iter().map(move |&i| (o, i)))
-        .map(|(o, i)| run / (spacing(o) * spacing(i)) * NS_PER_ADD * 1e-3)
+        .map(|(o, i)| NS_PER_ADD * 1e-3 / (spacing(o) * spacing(i)))
         .sum();
-    sums < loop_rate / 64.0
+    loop_rate / 64.0 / sums_per_length
+}
+
+/// Whether answering block `run` pays even if its response rings as long
+/// as the run: [`allowance`] against [`priced_run`].
+pub(crate) fn pays(transits: &[f64], run: (usize, usize)) -> bool {
+    priced_run(transits) < allowance(transits, run)
 }
 
 /// Whether `run` neither overlaps nor touches any of `chosen`: a block's
@@ -133,6 +144,23 @@ mod tests {
         ];
         assert_eq!(candidates(&rod_13).first(), Some(&(3, 4)));
         assert!(!pays(&rod_13, (3, 4)));
+    }
+
+    /// A pair beside a fast bottom (the fast-bottom survey's rod 17, seed
+    /// 11: `1.1e-6` and `1.5e-5` on a bottom of `2.4e-4`): its port on
+    /// the bottom's lattice delivers so often that sums over a response
+    /// as long as the run would cost more than the loop, so it is taken
+    /// only where its response is seen to ring out sooner, within a run
+    /// of its allowance (`flow.rs`, `tests/blocks.rs`).
+    #[test]
+    fn a_pair_beside_a_fast_bottom_pays_only_if_it_rings_out() {
+        let rod_17 = [2.446e-4, 1.089e-6, 1.541e-5, 8.46e-2];
+        assert_eq!(candidates(&rod_17), vec![(1, 2)]);
+        assert!(!pays(&rod_17, (1, 2)));
+        let allowance = allowance(&rod_17, (1, 2));
+        assert!(allowance < priced_run(&rod_17), "{allowance}");
+        // a response ringing out within a few hundred bottom transits
+        assert!(allowance > 300.0 * rod_17[0], "{allowance}");
     }
 
     #[test]

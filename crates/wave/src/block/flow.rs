@@ -33,8 +33,9 @@ impl<R: Real> Tracer<R> {
         };
         let mut chosen = Vec::new();
         let mut list = Vec::new();
+        let mut probed = 0;
         for run in super::candidates(&transits) {
-            if super::apart(run, &chosen) && super::pays(&transits, run) {
+            if super::apart(run, &chosen) && self.block_pays(&transits, run, &mut probed) {
                 chosen.push(run);
                 list.push(super::Block::new(
                     &self.layers,
@@ -44,6 +45,7 @@ impl<R: Real> Tracer<R> {
                 ));
             }
         }
+        self.leap_work += probed * super::FRONT_ADDS / ADDS_PER_WORK;
         let n = self.layers.len();
         for &(a, b) in &chosen {
             for m in a - 1..=(b + 1).min(n - 1) {
@@ -51,6 +53,33 @@ impl<R: Real> Tracer<R> {
             }
         }
         self.blocks = Blocks::new(list, n);
+    }
+
+    /// Whether answering block `run` is expected to pay: even if its
+    /// response rings as long as the run, or because it rings out sooner
+    /// than the sums' allowance (`choice.rs`). The second is seen on a
+    /// probe of the block traced on the ladder's first lattice, the same
+    /// for every level of a ladder (how long a block rings is its physics,
+    /// not its lattice's); the probe's fronts are added to `probed`.
+    fn block_pays(&self, transits: &[f64], run: (usize, usize), probed: &mut u64) -> bool {
+        if super::pays(transits, run) {
+            return true;
+        }
+        let allowance = super::allowance(transits, run);
+        let (start, longest) = crate::ladder::LADDER_START;
+        let t_max = self
+            .layers
+            .iter()
+            .map(|l| l.transit_time)
+            .fold(R::zero(), |a, b| a.max(b));
+        let layers = &self.layers;
+        let first_lattice = |m: usize, _: Direction| {
+            (R::of(start) * layers[m].transit_time).min(R::of(longest) * t_max)
+        };
+        let mut probe = super::Block::new(&self.layers, &self.interfaces, run, &first_lattice);
+        let (rings_out, followed) = probe.rings_out_within(R::of(allowance));
+        *probed += followed;
+        rings_out
     }
 
     /// Fronts reaching a block's port at boundary `b`: the neighbour's
