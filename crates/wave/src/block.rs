@@ -41,9 +41,9 @@ pub(crate) use response::{Shape, Trace};
 /// `flow.rs`): about sixty nanoseconds against one.
 pub(crate) const FRONT_ADDS: u64 = 64;
 
-/// The most lattice points of its lower port a block's responses are
+/// The most lattice points of its finest port a block's responses are
 /// traced over to see whether they ring out (`Block::rings_out_within`):
-/// a few megabytes of taps.
+/// a few megabytes of taps for each port.
 const PROBE_CELLS: i64 = 1 << 20;
 
 /// One port: where the block meets a slower neighbour, and the arrivals
@@ -133,14 +133,19 @@ impl<R: Real> Block<R> {
     }
 
     /// Whether every input's response is over within `length` of its
-    /// arrival, traced that far at most (and never past
-    /// [`PROBE_CELLS`] of the lower port's lattice); the fronts followed.
+    /// arrival, traced that far at most (and never past [`PROBE_CELLS`]
+    /// of its finest port's lattice, whose taps grow the most); the fronts
+    /// followed.
     pub(crate) fn rings_out_within(&mut self, length: R) -> (bool, u64) {
-        let h = self.shape.port_spacing[0];
+        let ports = &self.shape.port_spacing;
+        let finest = (0..ports.len())
+            .min_by(|&a, &b| ports[a].to_f64().total_cmp(&ports[b].to_f64()))
+            .unwrap_or(0);
+        let h = ports[finest];
         let cells = (length / h).ceil().to_f64().min(PROBE_CELLS as f64) as i64;
         let mut followed = 0;
         for trace in &mut self.traces {
-            followed += trace.extend(&self.shape, 0, cells);
+            followed += trace.extend(&self.shape, finest, cells);
         }
         (self.traces.iter().all(|t| t.done), followed)
     }
