@@ -34,7 +34,7 @@ mod flow;
 mod inputs;
 mod response;
 
-pub(crate) use choice::{allowance, apart, candidates, pays};
+pub(crate) use choice::{allowance, apart, candidates, priced_run};
 pub(crate) use response::{Shape, Trace};
 
 /// A traced front's price in a port's multiply-adds (the work counted, see

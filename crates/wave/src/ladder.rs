@@ -34,6 +34,19 @@ pub(crate) struct MergeCheck {
 /// (measured at the paper's hard corner).
 pub(crate) const LADDER_START: (f64, f64) = (0.2, 4e-3);
 
+/// A lane's lattice spacing on the lattice `(per_transit, per_longest)`:
+/// that share of its layer's transit, but no more than that share of the
+/// longest transit `t_max`. One rule for the runs (`engine/setup.rs`) and
+/// for the choice of blocks, which prices and probes them on the ladder's
+/// lattices (`block/choice.rs`, `block/flow.rs`).
+pub(crate) fn lattice_spacing(
+    (per_transit, per_longest): (f64, f64),
+    transit: f64,
+    t_max: f64,
+) -> f64 {
+    (per_transit * transit).min(per_longest * t_max)
+}
+
 /// Levels a ladder needs before its estimate is trusted: two comparisons.
 const MIN_LEVELS: usize = 3;
 

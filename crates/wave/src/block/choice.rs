@@ -51,7 +51,7 @@ pub(crate) fn candidates(transits: &[f64]) -> Vec<(usize, usize)> {
 }
 
 /// The run a block is priced over: eight times the rod's summed transits.
-fn priced_run(transits: &[f64]) -> f64 {
+pub(crate) fn priced_run(transits: &[f64]) -> f64 {
     8.0 * transits.iter().sum::<f64>()
 }
 
@@ -72,7 +72,8 @@ fn priced_run(transits: &[f64]) -> f64 {
 pub(crate) fn allowance(transits: &[f64], (a, b): (usize, usize)) -> f64 {
     let (start, longest) = crate::ladder::LADDER_START;
     let t_max = transits.iter().copied().fold(0.0, f64::max);
-    let spacing = |m: usize| (start / 4.0 * transits[m]).min(longest / 4.0 * t_max);
+    let third = (start / 4.0, longest / 4.0);
+    let spacing = |m: usize| crate::ladder::lattice_spacing(third, transits[m], t_max);
     let loop_rate: f64 = (a..=b).map(|m| 2.0 / spacing(m)).sum();
     let ports: Vec<usize> = [Some(a - 1), (b + 1 < transits.len()).then_some(b + 1)]
         .into_iter()
@@ -86,12 +87,6 @@ pub(crate) fn allowance(transits: &[f64], (a, b): (usize, usize)) -> f64 {
     loop_rate / 64.0 / sums_per_length
 }
 
-/// Whether answering block `run` pays even if its response rings as long
-/// as the run: [`allowance`] against [`priced_run`].
-pub(crate) fn pays(transits: &[f64], run: (usize, usize)) -> bool {
-    priced_run(transits) < allowance(transits, run)
-}
-
 /// Whether `run` neither overlaps nor touches any of `chosen`: a block's
 /// neighbours are slow layers, never another block's.
 pub(crate) fn apart(run: (usize, usize), chosen: &[(usize, usize)]) -> bool {
@@ -101,6 +96,12 @@ pub(crate) fn apart(run: (usize, usize), chosen: &[(usize, usize)]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Whether answering block `run` pays even if its response rings as
+    /// long as the run, as `flow.rs` judges it before any probe.
+    fn pays(transits: &[f64], run: (usize, usize)) -> bool {
+        priced_run(transits) < allowance(transits, run)
+    }
 
     /// Layer survey rod 12 (seed 7): layers 3 and 4 (transits `3.4e-5`,
     /// `2.8e-6`) between layers of `0.38` and `7.7e-3`; the fast top

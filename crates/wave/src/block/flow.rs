@@ -62,19 +62,17 @@ impl<R: Real> Tracer<R> {
     /// for every level of a ladder (how long a block rings is its physics,
     /// not its lattice's); the probe's fronts are added to `probed`.
     fn block_pays(&self, transits: &[f64], run: (usize, usize), probed: &mut u64) -> bool {
-        if super::pays(transits, run) {
+        let allowance = super::allowance(transits, run);
+        if super::priced_run(transits) < allowance {
             return true;
         }
-        let allowance = super::allowance(transits, run);
-        let (start, longest) = crate::ladder::LADDER_START;
-        let t_max = self
-            .layers
-            .iter()
-            .map(|l| l.transit_time)
-            .fold(R::zero(), |a, b| a.max(b));
-        let layers = &self.layers;
+        let t_max = transits.iter().copied().fold(0.0, f64::max);
         let first_lattice = |m: usize, _: Direction| {
-            (R::of(start) * layers[m].transit_time).min(R::of(longest) * t_max)
+            R::of(crate::ladder::lattice_spacing(
+                crate::ladder::LADDER_START,
+                transits[m],
+                t_max,
+            ))
         };
         let mut probe = super::Block::new(&self.layers, &self.interfaces, run, &first_lattice);
         let (rings_out, followed) = probe.rings_out_within(R::of(allowance));

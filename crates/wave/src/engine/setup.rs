@@ -60,7 +60,11 @@ impl<R: Real> Tracer<R> {
                 per_longest,
             } => (
                 Box::new(move |transit: f64, speed: f64| MergeRule::Lattice {
-                    spacing: simultaneity.max(of((per_transit * transit).min(per_longest * t_max))),
+                    spacing: simultaneity.max(of(crate::ladder::lattice_spacing(
+                        (per_transit, per_longest),
+                        transit,
+                        t_max,
+                    ))),
                     keep_above: of(KEEP_ABOVE) * vb / of(speed),
                     keep_at_most: KEEP_AT_MOST,
                 }),
