@@ -32,6 +32,7 @@ use std::collections::VecDeque;
 mod choice;
 mod flow;
 mod inputs;
+mod partitioned;
 mod response;
 
 pub(crate) use choice::{allowance, apart, candidates, priced_run};
@@ -224,13 +225,16 @@ impl<R: Real> Block<R> {
                 if trace.done {
                     arrivals.let_go_before(m - trace.taps[o].len() as i64 + 1);
                 }
-                let Some(oldest) = arrivals.first() else {
+                if arrivals.is_empty() {
                     continue;
-                };
-                if !trace.has(&self.shape, o, m - oldest) {
-                    work += FRONT_ADDS * trace.extend(&self.shape, o, m - oldest);
                 }
-                let (response, adds) = arrivals.response_at(m, &trace.taps[o]);
+                let ready = trace.final_through(&self.shape, o);
+                let last = arrivals.last_tap(m, trace.done, trace.taps[o].len(), ready);
+                if !trace.has(&self.shape, o, last) {
+                    work += FRONT_ADDS * trace.extend(&self.shape, o, last);
+                }
+                let ready = trace.final_through(&self.shape, o);
+                let (response, adds) = arrivals.response_at(m, &trace.taps[o], trace.done, ready);
                 sum += response;
                 work += adds;
             }

@@ -40,6 +40,9 @@ pub trait Real:
     /// that leapt would lose the digits it is run for (the hard corner's
     /// `e` moved by `2.3e-15` against the loop in double-double).
     const LEAPS: bool;
+    /// Whether a block's long sums may be taken by FFT in double precision
+    /// (`block/partitioned.rs`) without losing the digits the type keeps.
+    const FFT_SUMS: bool;
     /// To the nearest double.
     fn to_f64(self) -> f64;
     /// The number's key: keys order as the numbers do.
@@ -104,6 +107,7 @@ const EXACT_INTEGERS: f64 = 4_503_599_627_370_496.0;
 
 impl Real for f64 {
     const LEAPS: bool = true;
+    const FFT_SUMS: bool = true;
     type Key = OrderedFloat<f64>;
     #[inline(always)]
     fn key(self) -> Self::Key {
@@ -294,6 +298,7 @@ impl Arithmetic for DoubleDouble {
 
 impl Real for DoubleDouble {
     const LEAPS: bool = false;
+    const FFT_SUMS: bool = false;
     /// A normalised double-double orders as its (high, low) parts do.
     type Key = (OrderedFloat<f64>, OrderedFloat<f64>);
     fn key(self) -> Self::Key {

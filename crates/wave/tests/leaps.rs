@@ -404,7 +404,11 @@ fn ladder_rods(seed: u64, count: usize) -> Vec<Rod> {
 }
 
 /// The automatic resolution made to take the merged ladder (the exact run
-/// is given a thousand events).
+/// is given a thousand events), without blocks of fast layers: a block
+/// keeps its neighbours from leaping, and since its sums are taken by FFT
+/// (`block/partitioned.rs`) blocks pay on some rods of this draw, where
+/// the leaps these tests are about took arrivals (blocks are held to the
+/// exact engine in `tests/blocks.rs`).
 fn forced_ladder() -> WaveConfig {
     WaveConfig {
         resolution: Resolution::Auto {
@@ -412,6 +416,7 @@ fn forced_ladder() -> WaveConfig {
             budget_events: 4_000_000,
             target: 1e-5,
         },
+        fast_blocks: false,
         ..WaveConfig::default()
     }
 }
@@ -453,7 +458,7 @@ const LADDER_SEED: u64 = 0x1add_e125_0000_0009;
 const PLATEAU_ROD: usize = 3;
 
 /// Merged ladders whose leaps take arrivals and deposit their trains
-/// together (the default), made to run on rods the exact engine can
+/// together (the default, but for blocks), made to run on rods the exact engine can
 /// finish: the exact `e` lies within the bound the ladder reports. One rod
 /// of the draw is left to the test below, where the bound fails (with or
 /// without arrivals taken).

@@ -249,6 +249,21 @@ impl<R: Real> Trace<R> {
         self.done || R::of((k + 1) as f64) * shape.port_spacing[out] <= self.reached
     }
 
+    /// The last of port `out`'s taps that is final (all of them once done).
+    pub(crate) fn final_through(&self, shape: &Shape<R>, out: usize) -> i64 {
+        if self.done {
+            return i64::MAX;
+        }
+        let mut k = (self.reached / shape.port_spacing[out]).floor().to_f64() as i64 - 1;
+        while k >= 0 && !self.has(shape, out, k) {
+            k -= 1;
+        }
+        while self.has(shape, out, k + 1) {
+            k += 1;
+        }
+        k
+    }
+
     /// A front born at `t` in the block's lane (`m`, up or down), on the
     /// lane's lattice.
     fn push(&mut self, shape: &Shape<R>, m: usize, up: bool, t: R, d: R) {

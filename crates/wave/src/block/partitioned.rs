@@ -1,0 +1,326 @@
+//! Long responses summed by FFT, in blocks of doubling size.
+//!
+//! A port's sums are a causal convolution of its arrivals with the block's
+//! taps. Summed directly (`inputs.rs`), a response that rings for `L`
+//! lattice points costs `L` multiply-adds a delivered point, so a block
+//! whose response rings through the run costs the square of the run: on
+//! the fast-bottom survey's rods 13 and 31 (seed 11), with their blocks
+//! answered, the sums were four fifths of the time. Audio reverbs run long
+//! impulse responses the way this module does (a non-uniformly partitioned
+//! convolution): the first [`DIRECT`] taps are summed directly, and level
+//! `c`, of block size `n = FIRST 2^c`, holds taps `[2n, 4n)` as two
+//! partitions of `n` points; the top level, of [`TOP`] points, holds every
+//! tap from `2n` on, in as many partitions as the response is long. A
+//! level's block of `n` outputs is one inverse FFT of the sum of its
+//! partitions' spectra times those of input blocks at least a block older,
+//! whose points are final: an arrival lands on the point being delivered
+//! or the one before, and one landing in a block a level has read makes
+//! that level read its blocks again. A delivered point then costs `DIRECT`
+//! multiply-adds and a few FFT butterflies for each of about `log L`
+//! levels, and `8 L / TOP` more past `2 TOP` ([`adds_per_point`]).
+//!
+//! A level reads its partitions whole, so their taps must be final: the
+//! trace of a response that has not rung out is extended only as far as a
+//! port needs, and a level below the top waits until its taps are (its
+//! taps are summed directly until then: extending the trace ahead for it
+//! doubled the time of a layer-survey rod whose trace was all its time);
+//! the top reads up to two of its partitions ahead of the span.
+//!
+//! The FFT is `rustfft`'s scalar one, in double precision: the same
+//! numbers on every CPU. Its rounding is that of the direct sums (relative
+//! `1e-16` of the terms' sizes, times the logarithm of the block), and the
+//! ladder's levels and twin see it as they see the rest; a double-double
+//! run sums directly ([`Real::FFT_SUMS`]).
+
+use crate::real::Real;
+use rustfft::num_complex::Complex;
+use rustfft::{Fft, FftPlannerScalar};
+use std::collections::VecDeque;
+use std::sync::Arc;
+
+/// Points of the finest level's blocks.
+pub(crate) const FIRST: i64 = 128;
+
+/// Taps summed directly: those before the finest level's.
+pub(crate) const DIRECT: i64 = 2 * FIRST;
+
+/// Points of the top level's blocks (its FFTs are twice as long).
+pub(crate) const TOP: i64 = FIRST << 7;
+
+/// The levels: block sizes from [`FIRST`] up to the top's.
+pub(crate) const LEVELS: usize = 8;
+
+/// Multiply-adds (as counted) a delivered point costs when the arrivals
+/// held reach `reach` taps back and the response has not rung out, so
+/// that its taps are final only as far as the sums need them: the direct
+/// sums, then per level its two FFTs and its partitions' products a
+/// block, and the taps of the levels still waiting summed directly. What
+/// the blocks' price (`choice.rs`) charges; a response that has rung out
+/// costs at most this.
+pub(crate) fn adds_per_point(reach: f64) -> f64 {
+    let direct = DIRECT as f64;
+    if reach < direct {
+        return reach.max(0.0);
+    }
+    let (mut adds, mut covered) = (direct, direct);
+    for c in 0..LEVELS {
+        let n = block_size(c) as f64;
+        if 2.0 * n > reach || (n < TOP as f64 && 4.0 * n - 1.0 > reach) {
+            break;
+        }
+        let parts = if n < TOP as f64 {
+            2.0
+        } else {
+            (reach / n).floor() - 1.0
+        };
+        adds += (2 * fft_work(2 * n as i64)) as f64 / n + 8.0 * parts;
+        covered = if n < TOP as f64 {
+            4.0 * n
+        } else {
+            f64::INFINITY
+        };
+    }
+    adds + (reach + 1.0 - covered).max(0.0)
+}
+
+/// Arrivals on consecutive lattice points from `first` on, as a level
+/// reads them.
+pub(crate) struct Points<'a, R> {
+    pub first: i64,
+    pub jumps: &'a [R],
+}
+
+impl<R: Real> Points<'_, R> {
+    /// The points of `[from, from + n)` into the first half of `out`
+    /// (the rest zero); whether any is not zero.
+    fn block(&self, from: i64, n: usize, out: &mut [Complex<f64>]) -> bool {
+        out.fill(Complex::default());
+        let mut any = false;
+        for (i, c) in out.iter_mut().take(n).enumerate() {
+            let k = from + i as i64 - self.first;
+            if let Some(&x) = usize::try_from(k).ok().and_then(|k| self.jumps.get(k)) {
+                *c = Complex::new(x.to_f64(), 0.0);
+                any |= x != R::zero();
+            }
+        }
+        any
+    }
+}
+
+/// One level of the partitioned sums.
+#[derive(Clone)]
+pub(crate) struct Level {
+    /// Points a block.
+    n: i64,
+    /// Whether it is the top level (partitions `2, 3, ...`; else `2, 3`).
+    top: bool,
+    forward: Arc<dyn Fft<f64>>,
+    inverse: Arc<dyn Fft<f64>>,
+    /// Spectra of the taps' partitions `p = 2, 3, ...` (taps `[p n, (p +
+    /// 1) n)`, padded to `2 n`); `None` where they are all zero.
+    parts: Vec<Option<Vec<Complex<f64>>>>,
+    /// Spectra of input blocks `inputs_from, ...`; `None` where the block
+    /// holds no arrival.
+    inputs: VecDeque<Option<Vec<Complex<f64>>>>,
+    inputs_from: i64,
+    /// The output block whose sums `current` holds, if any.
+    block: Option<i64>,
+    /// The level's part of that block's outputs, and of the next one's.
+    current: Vec<f64>,
+    carry: Vec<f64>,
+    buffer: Vec<Complex<f64>>,
+    scratch: Vec<Complex<f64>>,
+}
+
+impl std::fmt::Debug for Level {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Level")
+            .field("n", &self.n)
+            .field("top", &self.top)
+            .field("parts", &self.parts.len())
+            .field("block", &self.block)
+            .finish()
+    }
+}
+
+/// The size of level `c`'s blocks.
+pub(crate) fn block_size(c: usize) -> i64 {
+    (FIRST << c).min(TOP)
+}
+
+/// The taps a level reads for output point `m`, given the oldest arrival
+/// held: its last one.
+pub(crate) fn last_tap(c: usize, m: i64, oldest: i64) -> i64 {
+    let n = block_size(c);
+    if n < TOP {
+        4 * n - 1
+    } else {
+        (m.div_euclid(n) - oldest.div_euclid(n) + 1) * n - 1
+    }
+}
+
+impl Level {
+    /// Level `c`.
+    pub(crate) fn new(c: usize) -> Self {
+        let n = block_size(c);
+        let size = 2 * n as usize;
+        let mut planner = FftPlannerScalar::new();
+        let forward = planner.plan_fft_forward(size);
+        let inverse = planner.plan_fft_inverse(size);
+        let scratch_len = forward
+            .get_inplace_scratch_len()
+            .max(inverse.get_inplace_scratch_len());
+        Self {
+            n,
+            top: n == TOP,
+            forward,
+            inverse,
+            parts: Vec::new(),
+            inputs: VecDeque::new(),
+            inputs_from: 0,
+            block: None,
+            current: vec![0.0; n as usize],
+            carry: vec![0.0; n as usize],
+            buffer: vec![Complex::default(); size],
+            scratch: vec![Complex::default(); scratch_len],
+        }
+    }
+
+    /// Points before this have been read into the level's sums.
+    pub(crate) fn read_before(&self) -> i64 {
+        self.block.map_or(i64::MIN, |s| (s - 1) * self.n)
+    }
+
+    /// Forgets what it read: its sums are taken again at the next point.
+    pub(crate) fn forget(&mut self) {
+        self.block = None;
+        self.inputs.clear();
+    }
+
+    /// The level's part of output point `m`: taps from `2 n` (to `4 n`
+    /// below the top), final through [`last_tap`]; `taps` beyond their
+    /// length are zero. Multiply-adds (about) are added to `work`.
+    pub(crate) fn at<R: Real>(&mut self, m: i64, x: &Points<R>, taps: &[R], work: &mut u64) -> f64 {
+        let s = m.div_euclid(self.n);
+        if self.block != Some(s) {
+            if self.block == Some(s - 1) {
+                std::mem::swap(&mut self.current, &mut self.carry);
+                self.carry.fill(0.0);
+            } else {
+                self.current.fill(0.0);
+                self.carry.fill(0.0);
+                self.inputs.clear();
+                // the block before's second half, into this one
+                self.add_block(s - 1, x, taps, work);
+                std::mem::swap(&mut self.current, &mut self.carry);
+                self.carry.fill(0.0);
+            }
+            self.add_block(s, x, taps, work);
+            self.block = Some(s);
+        }
+        self.current[(m - s * self.n) as usize]
+    }
+
+    /// The outputs of input blocks `s - p` with partitions `p`: the first
+    /// half into `current`, the second into `carry`.
+    fn add_block<R: Real>(&mut self, s: i64, x: &Points<R>, taps: &[R], work: &mut u64) {
+        let n = self.n;
+        let oldest = x.first.div_euclid(n);
+        let last_part = if self.top { s - oldest } else { 3 };
+        if last_part < 2 {
+            return;
+        }
+        // the input blocks `s - last_part ..= s - 2`, oldest first
+        let (lo, hi) = (s - last_part, s - 2);
+        if self.inputs.is_empty() || lo < self.inputs_from || hi + 1 < self.inputs_from {
+            self.inputs.clear();
+            self.inputs_from = lo;
+        }
+        while self.inputs_from < lo {
+            self.inputs.pop_front();
+            self.inputs_from += 1;
+        }
+        while self.inputs_from + (self.inputs.len() as i64) <= hi {
+            let b = self.inputs_from + self.inputs.len() as i64;
+            let spectrum = self.spectrum_of(b, x, work);
+            self.inputs.push_back(spectrum);
+        }
+        self.compute_parts(last_part, taps, work);
+        let mut sum = vec![Complex::<f64>::default(); 2 * n as usize];
+        let mut any = false;
+        for p in 2..=last_part {
+            let Some(Some(input)) = self.inputs.get((s - p - self.inputs_from) as usize) else {
+                continue;
+            };
+            let Some(Some(part)) = self.parts.get((p - 2) as usize) else {
+                continue;
+            };
+            for ((z, a), b) in sum.iter_mut().zip(input).zip(part) {
+                *z += a * b;
+            }
+            *work += 8 * n as u64;
+            any = true;
+        }
+        if !any {
+            return;
+        }
+        self.inverse
+            .process_with_scratch(&mut sum, &mut self.scratch);
+        *work += fft_work(2 * n);
+        let scale = 1.0 / (2 * n) as f64;
+        let (first, second) = sum.split_at(n as usize);
+        for (c, z) in self.current.iter_mut().zip(first) {
+            *c += z.re * scale;
+        }
+        for (c, z) in self.carry.iter_mut().zip(second) {
+            *c += z.re * scale;
+        }
+    }
+
+    /// The spectrum of input block `b`, if it holds an arrival.
+    fn spectrum_of<R: Real>(
+        &mut self,
+        b: i64,
+        x: &Points<R>,
+        work: &mut u64,
+    ) -> Option<Vec<Complex<f64>>> {
+        let mut block = vec![Complex::default(); 2 * self.n as usize];
+        if !x.block(b * self.n, self.n as usize, &mut block) {
+            return None;
+        }
+        self.forward
+            .process_with_scratch(&mut block, &mut self.scratch);
+        *work += fft_work(2 * self.n);
+        Some(block)
+    }
+
+    /// The spectra of partitions `2..=last`, each computed the first time
+    /// it is asked for.
+    fn compute_parts<R: Real>(&mut self, last: i64, taps: &[R], work: &mut u64) {
+        while (self.parts.len() as i64) + 2 <= last {
+            let p = self.parts.len() as i64 + 2;
+            let from = (p * self.n) as usize;
+            let part = taps.get(from..).unwrap_or(&[]);
+            let part = &part[..part.len().min(self.n as usize)];
+            if part.iter().all(|&t| t == R::zero()) {
+                self.parts.push(None);
+                continue;
+            }
+            self.buffer.fill(Complex::default());
+            for (c, &t) in self.buffer.iter_mut().zip(part) {
+                *c = Complex::new(t.to_f64(), 0.0);
+            }
+            self.forward
+                .process_with_scratch(&mut self.buffer, &mut self.scratch);
+            *work += fft_work(2 * self.n);
+            self.parts.push(Some(self.buffer.clone()));
+        }
+    }
+}
+
+/// An FFT of `size` points, counted in multiply-adds: about `size log2
+/// size` (each radix-4 butterfly's complex products and sums).
+fn fft_work(size: i64) -> u64 {
+    let size = size as u64;
+    size * u64::from(size.ilog2())
+}
