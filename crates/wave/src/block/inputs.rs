@@ -61,7 +61,10 @@ impl<R: Real> LatticeInputs<R> {
         }
     }
 
-    /// Lets go of the points before `k`.
+    /// Lets go of the points before `k`. The levels are not told: a port
+    /// lets go only the points whose later taps are past its response's
+    /// final length (`Block::due`), so what a level read of them adds
+    /// zeros (to rounding) to every later output.
     pub(crate) fn let_go_before(&mut self, k: i64) {
         while self.first < k && self.jumps.pop_front().is_some() {
             self.first += 1;

@@ -27,10 +27,12 @@
 //! the top reads up to two of its partitions ahead of the span.
 //!
 //! The FFT is `rustfft`'s scalar one, in double precision: the same
-//! numbers on every CPU. Its rounding is that of the direct sums (relative
-//! `1e-16` of the terms' sizes, times the logarithm of the block), and the
-//! ladder's levels and twin see it as they see the rest; a double-double
-//! run sums directly ([`Real::FFT_SUMS`]).
+//! numbers on every CPU. Its rounding is relative `1e-16` (times the
+//! logarithm of the block) of the sizes of a whole block's inputs and a
+//! partition's taps, not of one output's terms, so where one output
+//! cancels beside large terms elsewhere in its block it can be far above
+//! the direct sums'; the ladder's levels and twin measure it with the
+//! rest. A double-double run sums directly ([`Real::FFT_SUMS`]).
 
 use crate::real::Real;
 use rustfft::num_complex::Complex;
@@ -55,8 +57,12 @@ pub(crate) const LEVELS: usize = 8;
 /// that its taps are final only as far as the sums need them: the direct
 /// sums, then per level its two FFTs and its partitions' products a
 /// block, and the taps of the levels still waiting summed directly. What
-/// the blocks' price (`choice.rs`) charges; a response that has rung out
-/// costs at most this.
+/// the blocks' price (`choice.rs`) charges. A response that has rung out
+/// costs about as much or less: a level is taken once its taps are final,
+/// so a response ending a little past a level's first tap pays that
+/// level's FFTs for a few taps (up to `4 log2(2n) + 8` multiply-adds a
+/// point over the price), and the top's partitions may be one more than
+/// priced where the oldest arrival is not on a block's first point.
 pub(crate) fn adds_per_point(reach: f64) -> f64 {
     let direct = DIRECT as f64;
     if reach < direct {
