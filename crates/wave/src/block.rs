@@ -228,12 +228,12 @@ impl<R: Real> Block<R> {
                 if arrivals.is_empty() {
                     continue;
                 }
-                let ready = trace.final_through(&self.shape, o);
+                let mut ready = trace.final_through(&self.shape, o);
                 let last = arrivals.last_tap(m, trace.done, trace.taps[o].len(), ready);
                 if !trace.has(&self.shape, o, last) {
                     work += FRONT_ADDS * trace.extend(&self.shape, o, last);
+                    ready = trace.final_through(&self.shape, o);
                 }
-                let ready = trace.final_through(&self.shape, o);
                 let (response, adds) = arrivals.response_at(m, &trace.taps[o], trace.done, ready);
                 sum += response;
                 work += adds;

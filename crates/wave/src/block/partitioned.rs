@@ -252,7 +252,8 @@ impl Level {
             self.inputs.push_back(spectrum);
         }
         self.compute_parts(last_part, taps, work);
-        let mut sum = vec![Complex::<f64>::default(); 2 * n as usize];
+        let mut sum = std::mem::take(&mut self.buffer);
+        sum.fill(Complex::default());
         let mut any = false;
         for p in 2..=last_part {
             let Some(Some(input)) = self.inputs.get((s - p - self.inputs_from) as usize) else {
@@ -268,6 +269,7 @@ impl Level {
             any = true;
         }
         if !any {
+            self.buffer = sum;
             return;
         }
         self.inverse
@@ -281,6 +283,7 @@ impl Level {
         for (c, z) in self.carry.iter_mut().zip(second) {
             *c += z.re * scale;
         }
+        self.buffer = sum;
     }
 
     /// The spectrum of input block `b`, if it holds an arrival.
