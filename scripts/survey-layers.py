@@ -7,9 +7,10 @@ Draws seeded random rods (2 to 8 layers; lengths uniform in [0.2, 1.2],
 densities log-uniform in [0.1, 10], wave speeds log-uniform over SPEEDS
 decades, redrawn until the transit-time ratio is at most 10^SPEEDS), runs
 `impact run SCENE --json` on each with the default settings, one at a time,
-and prints one line per rod (layers, ratio, seconds, events, e, error bound)
-and a summary: median, 90th percentile and largest time, how many took
-over 1 s, and how many did not finish within --timeout.
+and prints one line per rod (layers, ratio, seconds, events, peak memory,
+e, error bound) and a summary: median, 90th percentile and largest time,
+how many took over 1 s, how many did not finish within --timeout, and the
+largest peak memory (the process's resident set, from `wait4`).
 
     python3 scripts/survey-layers.py                 # 40 rods, seed 7
     python3 scripts/survey-layers.py --rods 100 --seed 1 --timeout 120
@@ -32,10 +33,12 @@ import json
 import math
 import os
 import random
+import resource
 import statistics
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 from pathlib import Path
 
@@ -81,6 +84,49 @@ def draw_fast_bottom(rng):
     return {"impact_speed": 1.0, "layers": layers}
 
 
+def run_measured(cmd, timeout):
+    """Runs `cmd` to its end: (exit code, stdout, stderr, seconds, peak
+    resident memory in MiB, floor in MiB). Raises
+    `subprocess.TimeoutExpired` (the process killed) after `timeout`
+    seconds. The child is reaped with `os.wait4`, whose resource usage is
+    the child's own (`getrusage` of all children gives only the largest
+    so far). Its peak counts what it held before `exec`, a fork of this
+    interpreter: the floor, this interpreter's own peak, is the least any
+    child's peak can be."""
+    unit = 1024 * 1024 if sys.platform == "darwin" else 1024  # ru_maxrss: bytes or KiB
+    floor = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / unit
+    with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
+        start = time.perf_counter()
+        proc = subprocess.Popen(cmd, stdout=out, stderr=err)
+        reaped = {}
+
+        def reap():
+            _, status, usage = os.wait4(proc.pid, 0)
+            reaped["seconds"] = time.perf_counter() - start
+            reaped["code"] = os.waitstatus_to_exitcode(status)
+            reaped["mib"] = usage.ru_maxrss / unit
+
+        waiter = threading.Thread(target=reap)
+        waiter.start()
+        waiter.join(timeout)
+        if waiter.is_alive():
+            proc.kill()
+            waiter.join()
+            proc.returncode = reaped["code"]
+            raise subprocess.TimeoutExpired(cmd, timeout)
+        # (reaped here: Popen must not wait for it again)
+        proc.returncode = reaped["code"]
+        out.seek(0)
+        err.seek(0)
+        return (reaped["code"], out.read().decode(), err.read().decode(), reaped["seconds"],
+                reaped["mib"], floor)
+
+
+def memory(mib, floor):
+    """A peak in MiB, six wide; one within 5 % of the floor is at most it."""
+    return f"{'<=' + format(floor, '.0f'):>6}" if mib <= 1.05 * floor else f"{mib:6.1f}"
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--rods", type=int, default=40, help="rods to draw (default 40)")
@@ -107,8 +153,9 @@ def main():
 
     rng = random.Random(args.seed)
     times, unfinished, failed = [], 0, 0
+    peak, peak_rod, floor = 0.0, None, 0.0
     checked, held, closest = 0, 0, 0.0
-    print(f"rod  layers  ratio      seconds       events  e             bound")
+    print(f"rod  layers  ratio      seconds       events     MiB  e             bound")
     with tempfile.TemporaryDirectory(prefix="impact-survey-") as work:
         for k in range(args.rods):
             scene = draw_fast_bottom(rng) if args.fast_bottom else draw(rng, args.speeds)
@@ -119,22 +166,24 @@ def main():
                 (args.keep / path.name).write_text(json.dumps(scene, indent=1))
             transits = [l["length"] / math.sqrt(l["modulus"] / l["density"]) for l in scene["layers"]]
             ratio = max(transits) / min(transits)
-            start = time.perf_counter()
             try:
-                run = subprocess.run([impact, "run", str(path), "--json"], capture_output=True,
-                                     text=True, timeout=args.timeout)
+                code, stdout, stderr, seconds, mib, at_least = run_measured(
+                    [impact, "run", str(path), "--json"], args.timeout)
             except subprocess.TimeoutExpired:
                 unfinished += 1
                 print(f"{k:3d}  {len(transits):6d}  {ratio:9.1e}  over {args.timeout:.0f} s (stopped)", flush=True)
                 continue
-            seconds = time.perf_counter() - start
-            if run.returncode != 0:
+            floor = max(floor, at_least)
+            shown = memory(mib, at_least)
+            if mib > peak:
+                peak, peak_rod = mib, k
+            if code != 0:
                 failed += 1
-                print(f"{k:3d}  {len(transits):6d}  {ratio:9.1e}  {seconds:7.2f}  exit {run.returncode}: "
-                      f"{run.stderr.strip().splitlines()[-1] if run.stderr.strip() else ''}", flush=True)
+                print(f"{k:3d}  {len(transits):6d}  {ratio:9.1e}  {seconds:7.2f}  exit {code}: "
+                      f"{stderr.strip().splitlines()[-1] if stderr.strip() else ''}", flush=True)
                 continue
             times.append(seconds)
-            out = json.loads(run.stdout)
+            out = json.loads(stdout)
             exact = ""
             if args.exact_events and out["truncation"]["merged_fronts"] > 0:
                 ref = subprocess.run([impact, "run", str(path), "--json", "--resolution", "exact",
@@ -151,7 +200,7 @@ def main():
                 else:
                     exact = f"  (exact run over {args.exact_events:.0e} events)"
             print(f"{k:3d}  {len(transits):6d}  {ratio:9.1e}  {seconds:7.2f}  {out['events']:11d}  "
-                  f"{out['restitution']:.10f}  {out['error_bound']:.1e}{exact}", flush=True)
+                  f"{shown}  {out['restitution']:.10f}  {out['error_bound']:.1e}{exact}", flush=True)
     times.sort()
     over = sum(t > 1.0 for t in times)
     p90 = times[min(len(times) - 1, int(0.9 * len(times)))] if times else float("nan")
@@ -159,7 +208,10 @@ def main():
     print(f"{args.rods} rods (seed {args.seed}, {drawn}); of the {len(times)} "
           f"that finished: median {statistics.median(times) if times else float('nan'):.2f} s, "
           f"90th percentile {p90:.2f} s, largest finished {max(times) if times else float('nan'):.2f} s; "
-          f"{over} over 1 s, {unfinished} not finished within {args.timeout:g} s, {failed} failed")
+          f"{over} over 1 s, {unfinished} not finished within {args.timeout:g} s, {failed} failed; "
+          f"largest peak memory {memory(peak, floor).strip()} MiB"
+          + (f" (rod {peak_rod})" if peak_rod is not None and peak > 1.05 * floor else "")
+          + f" ('<=': within 5 % of the {floor:.0f} MiB a fork of this interpreter starts from)")
     if args.exact_events:
         print(f"merged rods run exactly within {args.exact_events:.0e} events: {checked}; "
               f"within their bound: {held} of {checked}"
