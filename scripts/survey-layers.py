@@ -153,7 +153,7 @@ def main():
 
     rng = random.Random(args.seed)
     times, unfinished, failed = [], 0, 0
-    peak, peak_rod, floor = 0.0, None, 0.0
+    peak, peak_rod, peak_floor, floor = 0.0, None, 0.0, 0.0
     checked, held, closest = 0, 0, 0.0
     print(f"rod  layers  ratio      seconds       events     MiB  e             bound")
     with tempfile.TemporaryDirectory(prefix="impact-survey-") as work:
@@ -176,7 +176,7 @@ def main():
             floor = max(floor, at_least)
             shown = memory(mib, at_least)
             if mib > peak:
-                peak, peak_rod = mib, k
+                peak, peak_rod, peak_floor = mib, k, at_least
             if code != 0:
                 failed += 1
                 print(f"{k:3d}  {len(transits):6d}  {ratio:9.1e}  {seconds:7.2f}  exit {code}: "
@@ -209,8 +209,8 @@ def main():
           f"that finished: median {statistics.median(times) if times else float('nan'):.2f} s, "
           f"90th percentile {p90:.2f} s, largest finished {max(times) if times else float('nan'):.2f} s; "
           f"{over} over 1 s, {unfinished} not finished within {args.timeout:g} s, {failed} failed; "
-          f"largest peak memory {memory(peak, floor).strip()} MiB"
-          + (f" (rod {peak_rod})" if peak_rod is not None and peak > 1.05 * floor else "")
+          f"largest peak memory {memory(peak, peak_floor).strip()} MiB"
+          + (f" (rod {peak_rod})" if peak_rod is not None and peak > 1.05 * peak_floor else "")
           + f" ('<=': within 5 % of the {floor:.0f} MiB a fork of this interpreter starts from)")
     if args.exact_events:
         print(f"merged rods run exactly within {args.exact_events:.0e} events: {checked}; "
