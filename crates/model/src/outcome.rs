@@ -109,6 +109,11 @@ pub struct ErrorEstimate {
     /// `transit_times` list). Their error is in the merged part.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub answered_blocks: Vec<[usize; 2]>,
+    /// The bottom group a merged run followed in steps between the wall's
+    /// decisions instead of event by event, its first and last layer (the
+    /// same lattice model: its error is in the merged part).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stepped_group: Option<[usize; 2]>,
     /// How the parts were obtained, in words.
     pub method: String,
 }

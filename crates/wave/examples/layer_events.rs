@@ -24,11 +24,14 @@ fn main() {
         // blocks of fast layers answered by their response only with
         // `BLOCKS=1` (on by default in runs): the loop's own events here
         fast_blocks: std::env::var_os("BLOCKS").is_some(),
+        // the bottom group stepped only with `GROUP=1`
+        step_bottom_group: std::env::var_os("GROUP").is_some(),
         ..WaveConfig::default()
     };
     let mut engine = WaveEngine::new(&rod, config).expect("a valid rod");
     let n = rod.layers().len();
     let (mut at, mut leaps, mut leapt) = (vec![0u64; n + 2], vec![0u64; n], vec![0u64; n]);
+    let mut stepped = 0u64;
     let start = std::time::Instant::now();
     loop {
         let step = engine.step().expect("a step");
@@ -40,6 +43,7 @@ fn main() {
                 leaps[layer] += 1;
                 leapt[layer] += events;
             }
+            StepKind::Stepped { fronts } => stepped += fronts,
             StepKind::Stopped(_) => break,
         }
     }
@@ -55,5 +59,6 @@ fn main() {
         o.contacts, o.end_time, o.stop_reason
     );
     println!("boundary events (0 wall, {n} top): {at:?}");
+    println!("fronts stepped in the bottom group: {stepped}");
     println!("leaps per layer: {leaps:?}\nevents leapt per layer: {leapt:?}");
 }

@@ -48,6 +48,7 @@ fn main() {
             StepKind::Wall { separated: true } => format!("SEP@{:.4}", step.time),
             StepKind::Reconnected => format!("LAND@{:.4}", step.time),
             StepKind::Leap { layer, events } => format!("LEAP{layer}:{events}@{:.4}", step.time),
+            StepKind::Stepped { fronts } => format!("STEP:{fronts}@{:.4}", step.time),
             StepKind::Stopped(reason) => format!("STOP({reason:?})@{:.4}", step.time),
         };
         flush(&mut counts, &mut line);

@@ -163,6 +163,13 @@ pub struct WaveConfig {
     /// response to what it sends its neighbours. Off: the loop takes every
     /// boundary event inside the block.
     pub fast_blocks: bool,
+    /// Step the bottom group between the wall's decisions (`group.rs`,
+    /// merged runs with nothing recorded): two or more layers at the wall,
+    /// each at least eight times faster than the layer above, followed in
+    /// steps of their lattices instead of event by event, and given back
+    /// to the loop a step before the wall could decide. Off: the loop
+    /// takes every event in them.
+    pub step_bottom_group: bool,
 }
 
 /// Which leaps take in their neighbours' arrivals (see
@@ -197,6 +204,7 @@ impl Default for WaveConfig {
             leap_quiet_layers: true,
             leap_arrivals: LeapArrivals::Merged,
             fast_blocks: true,
+            step_bottom_group: true,
         }
     }
 }

@@ -73,6 +73,12 @@ pub enum StepKind {
         /// The boundary events of its ringing that the leap replaced.
         events: u64,
     },
+    /// The bottom group's fronts were followed in steps (taken over from
+    /// the loop, or stepped on), `fronts` of them.
+    Stepped {
+        /// Fronts followed, each a boundary event.
+        fronts: u64,
+    },
     /// The run is over.
     Stopped(StopReason),
 }
@@ -176,6 +182,10 @@ pub struct Tracer<R: Real> {
     pub(crate) spare_fronts: Vec<crate::lane::Front<R>>,
     /// Blocks of fast layers answered by their response (`block.rs`).
     pub(crate) blocks: crate::block::Blocks<R>,
+    /// The bottom group, stepped between wall decisions (`group.rs`).
+    pub(crate) group: Option<Box<crate::group::Group<R>>>,
+    /// Fronts the bottom group's steps followed (boundary events).
+    pub(crate) stepped: u64,
     pub(crate) next_id: u32,
     pub(crate) now: R,
     stopped: Option<StopReason>,
@@ -388,6 +398,13 @@ impl<R: Real> Tracer<R> {
                 } else if let Some(&Some((bi, o))) = self.blocks.key_of.get(layer) {
                     // a block layer's key: its port's deliveries
                     self.block_delivery(bi, o)?
+                } else if layer == 0 && self.group_active() {
+                    // the stepped group's key
+                    self.group_tick()?
+                } else if self.group.as_deref().is_some_and(|g| layer < g.top)
+                    && self.try_group()?
+                {
+                    StepKind::Stepped { fronts: 0 }
                 } else {
                     // a layer is in the queue exactly while one of its lanes
                     // holds a front (spawn, take_head and leaps keep it so)
@@ -420,6 +437,10 @@ impl<R: Real> Tracer<R> {
             }
             EventKey::Escape => {
                 self.queue.pop();
+                if self.group_active() {
+                    // the field's check needs the group's fronts
+                    self.release_group()?;
+                }
                 if self.merged && !self.escape_confirmed()? {
                     StepKind::Wall { separated: false }
                 } else {
@@ -428,6 +449,9 @@ impl<R: Real> Tracer<R> {
             }
             EventKey::Horizon => {
                 self.queue.pop();
+                if self.group_active() {
+                    self.release_group()?;
+                }
                 let reason = StopReason::at_horizon(self.history.in_contact());
                 self.finish(t, reason)
             }
@@ -520,6 +544,14 @@ impl<R: Real> Tracer<R> {
         } else {
             if let Some(&Some(port)) = self.blocks.port_at.get(b) {
                 return self.block_boundary(b, t, (from_below, from_above), port, parents);
+            }
+            if self
+                .group
+                .as_deref()
+                .is_some_and(|g| g.active && g.top == b)
+            {
+                debug_assert!(from_below == R::zero());
+                return self.group_input(t, from_above, parents);
             }
             let k = self.interfaces[b - 1];
             let down = k.up_reflected * from_below + k.down_transmitted * from_above;

@@ -20,9 +20,11 @@ use std::collections::VecDeque;
 mod fifo;
 mod given;
 mod lattice;
+mod points;
 mod trains;
 
 pub(crate) use fifo::Fifo;
+pub(crate) use points::LatticePoints;
 
 pub(crate) use given::{Given, foresee};
 pub(crate) use trains::{Ring, Trains};
@@ -188,6 +190,17 @@ impl<R: Real> Lane<R> {
             }
         }
         self.flush_cell(cell);
+        self.refresh_head();
+    }
+
+    /// Replaces the fronts by `fronts` as they are (in birth order, kept
+    /// ones flagged): a stepped group's given back (`group.rs`).
+    pub(crate) fn restore(&mut self, fronts: &[Front<R>]) {
+        self.fronts.clear();
+        self.trains.clear();
+        self.newest_waiting = false;
+        self.kept = fronts.iter().filter(|f| f.kept).count();
+        self.fronts.extend(fronts.iter().copied());
         self.refresh_head();
     }
 

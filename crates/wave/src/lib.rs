@@ -23,6 +23,7 @@ mod engine;
 mod error;
 mod fields;
 mod geometric;
+mod group;
 mod ladder;
 mod lane;
 mod leap;

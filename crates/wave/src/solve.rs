@@ -157,6 +157,14 @@ pub fn solve_observed(
                 b + 1
             ));
         }
+        if let Some(((a, b), fronts)) = fine.stepped_group() {
+            estimate.stepped_group = Some([a, b]);
+            parts.push(format!(
+                "the layers of t{} to t{} followed in steps between the wall's decisions, {fronts} of their boundary events (step_bottom_group)",
+                a + 1,
+                b + 1
+            ));
+        }
     }
     let mut outcome = finished(fine.outcome(), &fine)?;
     let decisions = fine.decisions();

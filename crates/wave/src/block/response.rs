@@ -20,7 +20,7 @@
 //! velocity; that rest is counted as dropped at every input.
 
 use crate::engine::LayerConst;
-use crate::lane::Fifo;
+use crate::lane::LatticePoints as TraceLane;
 use crate::real::Real;
 use impact_model::InterfaceCoefficients;
 
@@ -59,51 +59,6 @@ pub(crate) struct Shape<R> {
     pub port_spacing: Vec<R>,
     /// Wave speeds of the neighbours an input comes from (lower, upper).
     pub port_speed: Vec<R>,
-}
-
-/// One lane of the trace: what is born on each point of its lattice,
-/// point `base` first (a vector read from a moving head, as a lane's
-/// fronts are: `VecDeque`'s growth by `resize` was a tenth of a trace).
-#[derive(Debug, Clone, Default)]
-struct TraceLane<R> {
-    base: i64,
-    points: Fifo<R>,
-}
-
-impl<R: Real> TraceLane<R> {
-    /// Adds `d` at lattice point `k`. A point before the lane's first is
-    /// one no front has reached yet (a front born within a step arrives
-    /// after it, see `Trace::step`): the lanes are taken one after another
-    /// within a step, so an emptied lane may first take a later birth.
-    #[inline(always)]
-    fn add(&mut self, k: i64, d: R) {
-        match usize::try_from(k.wrapping_sub(self.base)) {
-            Ok(i) if i < self.points.len() => self.points[i] += d,
-            // the next point: the common case, a lane grows at its end
-            Ok(i) if i == self.points.len() && i > 0 => self.points.push_back(d),
-            _ => self.add_outside(k, d),
-        }
-    }
-
-    /// [`TraceLane::add`] on a point the lane does not hold yet, not next
-    /// to its newest.
-    #[inline(never)]
-    fn add_outside(&mut self, k: i64, d: R) {
-        if self.points.is_empty() {
-            self.base = k;
-            self.points.push_back(d);
-            return;
-        }
-        while k < self.base {
-            self.points.insert(0, R::zero());
-            self.base -= 1;
-        }
-        let i = (k - self.base) as usize;
-        for _ in self.points.len()..=i {
-            self.points.push_back(R::zero());
-        }
-        self.points[i] += d;
-    }
 }
 
 /// The response to a unit jump arriving at one input port, traced as far

@@ -121,7 +121,7 @@ impl<R: Real> Tracer<R> {
     }
 
     /// Notes how close a decision came to going the other way.
-    pub(super) fn note_decision(&mut self, margin: R) {
+    pub(crate) fn note_decision(&mut self, margin: R) {
         let m = margin.abs().to_f64();
         self.decisions.count += 1;
         if m < NEAR_GRAZING {

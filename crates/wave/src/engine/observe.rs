@@ -24,7 +24,11 @@ impl<R: Real> Tracer<R> {
 
     /// Boundary events so far (reflections at a folded top included).
     pub fn events(&self) -> u64 {
-        self.events + self.folded_reflections + self.pending_reflections() + self.leaped
+        self.events
+            + self.folded_reflections
+            + self.pending_reflections()
+            + self.leaped
+            + self.stepped
     }
 
     /// The run's work so far: iterations of the event loop, plus what
@@ -32,7 +36,7 @@ impl<R: Real> Tracer<R> {
     /// A leap counts as one iteration but can fill thousands of cells: a
     /// budget of iterations alone let merged ladders refine far past it.
     pub fn steps(&self) -> u64 {
-        self.events + self.leap_work
+        self.events + self.leap_work + self.stepped
     }
 
     /// Boundary events advanced in closed form (by leaps over quiet layers).
@@ -103,6 +107,14 @@ impl<R: Real> Tracer<R> {
             .iter()
             .map(|b| (b.lower, b.upper))
             .collect()
+    }
+
+    /// The bottom group this run followed in steps
+    /// (`WaveConfig::step_bottom_group`), its first and last layer, and
+    /// the fronts the steps followed; none if it never stepped.
+    pub fn stepped_group(&self) -> Option<((usize, usize), u64)> {
+        let g = self.group.as_deref()?;
+        (self.stepped > 0).then_some(((0, g.top - 1), self.stepped))
     }
 
     /// The restitution so far.

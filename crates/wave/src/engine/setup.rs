@@ -3,7 +3,7 @@
 //! first front.
 
 use super::{Decisions, LayerConst, Ledger, TIE_ULPS, Tracer, WallLedger, past};
-use crate::config::{Resolution, StopRule, WaveConfig};
+use crate::config::{Record, Resolution, StopRule, WaveConfig};
 use crate::error::WaveError;
 use crate::lane::{Direction, Lane, MergeRule};
 use crate::queue::{EventKey, EventQueue};
@@ -196,6 +196,8 @@ impl<R: Real> Tracer<R> {
             together: room.together,
             spare_fronts: room.spare_fronts,
             blocks: crate::block::Blocks::default(),
+            group: None,
+            stepped: 0,
             next_id: 0,
             now: R::zero(),
             stopped: None,
@@ -214,6 +216,9 @@ impl<R: Real> Tracer<R> {
         // inside their response)
         if merged && config.fast_blocks && !config.record.fronts {
             engine.find_blocks();
+        }
+        if merged && config.step_bottom_group && config.record == Record::default() {
+            engine.find_group();
         }
         // The impact: the bottom is stopped, v: -v_b -> 0, so d = -v_b / c0.
         let first = -vb / c0;

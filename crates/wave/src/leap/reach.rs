@@ -2,7 +2,7 @@
 //! its quiet window.
 
 use crate::engine::Tracer;
-use crate::lane::{Direction, Lane};
+use crate::lane::{Direction, Lane, MergeRule};
 use crate::queue::EventKey;
 use crate::real::Real;
 
@@ -71,6 +71,19 @@ impl<R: Real> Tracer<R> {
                     others = earlier(others, at - margin);
                 }
             }
+        }
+        // a stepped bottom group sends fronts into the layer above it from
+        // where its steps reached on, each put on that lane's lattice as
+        // much as a cell earlier (`group.rs`)
+        if let Some(g) = self.group.as_deref().filter(|g| g.active && g.top < i) {
+            let lane = &self.lanes[Lane::<R>::index(g.top, Direction::Up)];
+            let cell = match lane.rule {
+                MergeRule::Lattice { spacing, .. } => spacing,
+                MergeRule::Simultaneous { .. } => R::zero(),
+            };
+            let at = reach(g.top, true, g.reached + transit(g.top)) - cell - cell;
+            earliest = earlier(earliest, at);
+            others = earlier(others, at);
         }
         // a landing bottom starts a front at the wall (its other fronts
         // reach the wall as a lane's fronts going down, counted above)

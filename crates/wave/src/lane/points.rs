@@ -1,0 +1,59 @@
+//! A lane's births on its lattice points, one number a point: how a
+//! block's trace (`block/response.rs`) and a stepped bottom group
+//! (`group.rs`) hold their fronts, where a lane of the event loop holds
+//! one front a point with its birth and id.
+
+use super::Fifo;
+use crate::real::Real;
+
+/// One lane's births on each point of its lattice, point `base` first (a vector read from a moving head, as a lane's
+/// fronts are: `VecDeque`'s growth by `resize` was a tenth of a trace).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct LatticePoints<R> {
+    pub(crate) base: i64,
+    pub(crate) points: Fifo<R>,
+}
+
+impl<R: Real> LatticePoints<R> {
+    /// Adds `d` at lattice point `k`. A point before the lane's first is
+    /// one no front has reached yet (a front born within a step arrives
+    /// after it, see `Trace::step`): the lanes are taken one after another
+    /// within a step, so an emptied lane may first take a later birth.
+    #[inline(always)]
+    pub(crate) fn add(&mut self, k: i64, d: R) {
+        match usize::try_from(k.wrapping_sub(self.base)) {
+            Ok(i) if i < self.points.len() => self.points[i] += d,
+            // the next point: the common case, a lane grows at its end
+            Ok(i) if i == self.points.len() && i > 0 => self.points.push_back(d),
+            _ => self.add_outside(k, d),
+        }
+    }
+
+    /// What point `k` holds, if the lane holds it and it is not zero.
+    pub(crate) fn get(&self, k: i64) -> Option<R> {
+        usize::try_from(k.wrapping_sub(self.base))
+            .ok()
+            .and_then(|i| self.points.get(i).copied())
+            .filter(|&d| d != R::zero())
+    }
+
+    /// [`LatticePoints::add`] on a point the lane does not hold yet, not next
+    /// to its newest.
+    #[inline(never)]
+    fn add_outside(&mut self, k: i64, d: R) {
+        if self.points.is_empty() {
+            self.base = k;
+            self.points.push_back(d);
+            return;
+        }
+        while k < self.base {
+            self.points.insert(0, R::zero());
+            self.base -= 1;
+        }
+        let i = (k - self.base) as usize;
+        for _ in self.points.len()..=i {
+            self.points.push_back(R::zero());
+        }
+        self.points[i] += d;
+    }
+}
