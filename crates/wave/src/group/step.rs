@@ -4,7 +4,7 @@
 use super::{Exact, Group};
 use crate::engine::Tracer;
 use crate::error::WaveError;
-use crate::lane::{Direction, Lane};
+use crate::lane::Direction;
 use crate::real::Real;
 use crate::wall::ContactState;
 
@@ -157,38 +157,46 @@ impl<R: Real> Group<R> {
             .iter()
             .position(|&x| x != R::zero())
             .map(|j| (self.arrival(i, lane.base + j as i64), j));
+        // the lane's first among its exact fronts: by arrival, then birth
+        // order
         let exact = self
             .exact
             .iter()
             .enumerate()
             .filter(|(_, e)| e.lane == i)
-            .map(|(n, e)| (e.born + transit, n))
-            .min_by(|a, b| a.0.partial_cmp(&b.0).unwrap_or(std::cmp::Ordering::Equal));
+            .min_by(|(_, a), (_, b)| {
+                (a.born + transit)
+                    .partial_cmp(&(b.born + transit))
+                    .unwrap_or(std::cmp::Ordering::Equal)
+                    .then(a.order.cmp(&b.order))
+            })
+            .map(|(n, e)| (e.born + transit, n, e.ahead));
+        // (a lattice point before an exact front arriving with it, unless
+        // that one is ahead of it in the lane)
         let lattice_first = match (point, exact) {
-            (Some(p), Some(e)) => p.0 <= e.0,
+            (Some(p), Some(e)) => p.0 < e.0 || (p.0 == e.0 && !e.2),
             (p, _) => p.is_some(),
         };
-        self.followed += 1;
         if lattice_first {
             let (at, j) = point?;
             if at > deadline {
-                self.followed -= 1;
                 return None;
             }
             let x = &mut self.points[i].points[j];
             let d = *x;
             *x = R::zero();
+            self.followed += 1;
             Some((at, d))
         } else {
-            let (at, n) = exact?;
+            let (at, n, _) = exact?;
             if at > deadline {
-                self.followed -= 1;
                 return None;
             }
             let e = self.exact.swap_remove(n);
             if e.kept {
                 self.kept[i] -= 1;
             }
+            self.followed += 1;
             Some((at, e.jump))
         }
     }
@@ -224,30 +232,50 @@ impl<R: Real> Tracer<R> {
     /// hands the loop what they did: the fronts sent up, the jumps born
     /// (the lanes' bases), the drops and the work.
     pub(crate) fn step_group(&mut self, end: R) -> Result<(), WaveError> {
+        self.step_group_taking(end, None).map(|_| ())
+    }
+
+    /// [`Tracer::step_group`], with the loop's front from above that an
+    /// arrival from below just before `end` may take into its event:
+    /// `taken`, one the loop has already taken out of its lane (its
+    /// arrival, the jump it delivers), else the lane's next. Whether it
+    /// was taken.
+    pub(crate) fn step_group_taking(
+        &mut self,
+        end: R,
+        taken: Option<(R, R)>,
+    ) -> Result<bool, WaveError> {
         let Some(mut g) = self.group.take() else {
-            return Ok(());
+            return Ok(false);
         };
-        let from_above = Lane::<R>::index(g.top, Direction::Down);
+        // (a folded top's one lane brings its fronts back down)
+        let from_above = self.from_above[g.top];
+        let mut took = false;
         while g.reached < end {
             let until = (g.reached + g.step).min(end);
-            // the loop's next front from above, should an arrival from
-            // below just before `until` take it with it
-            let lane = &self.lanes[from_above];
-            g.input = lane
-                .fronts()
-                .next()
-                .map(|f| (lane.arrival_of(f.born), f.jump));
+            g.input = taken.filter(|_| !took).or_else(|| {
+                from_above.and_then(|index| {
+                    let lane = &self.lanes[index];
+                    lane.fronts()
+                        .next()
+                        .map(|f| (lane.arrival_of(f.born), lane.delivered(f.jump)))
+                })
+            });
             g.input_taken = false;
             self.group_step(&mut g, until);
             g.reached = until;
             if g.input_taken {
-                self.pop_delivered(from_above);
-                self.reschedule_layer(g.top)?;
+                if taken.is_some() && !took {
+                    took = true;
+                } else if let Some(index) = from_above {
+                    self.pop_delivered(index);
+                    self.reschedule_layer(g.top)?;
+                }
             }
         }
         let result = self.settle_group(&mut g);
         self.group = Some(g);
-        result
+        result.map(|_| took)
     }
 
     /// One step, to `end`: the wall's arrivals in the order they come

@@ -130,6 +130,10 @@ impl<R: Real> Tracer<R> {
         self.queue
             .schedule(EventKey::Layer(0), tick, self.now)
             .map_err(past)?;
+        // (an iteration of the loop, counted as work, not as an event: the
+        // arrival that started it is the group's now)
+        self.events -= 1;
+        self.leap_work += 1;
         Ok(true)
     }
 
@@ -146,32 +150,14 @@ impl<R: Real> Tracer<R> {
         let before = self.stepped;
         self.step_group(self.now)?;
         let quiet = match self.group.as_deref() {
-            Some(g) => {
+            // a group that holds nothing goes back to the loop, whose
+            // queue then says whether anything is left to happen
+            Some(g) if g.len() > 0 => {
                 let to = self.now + g.step;
-                let mut wall: Vec<(R, R)> = Vec::new();
-                let lane = &g.points[1];
-                for (j, &x) in lane.points.iter().enumerate() {
-                    let at = g.arrival(1, lane.base + j as i64);
-                    if at >= to {
-                        break;
-                    }
-                    if x != R::zero() {
-                        wall.push((at, x));
-                    }
-                }
-                let lattice = wall.len();
-                for e in g.exact.iter().filter(|e| e.lane == 1) {
-                    let at = e.born + g.layers[0].transit_time;
-                    if at < to {
-                        wall.push((at, e.jump));
-                    }
-                }
-                if lattice < wall.len() {
-                    wall.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap_or(std::cmp::Ordering::Equal));
-                }
+                let wall = g.wall_ahead(to);
                 self.wall_quiet(wall.into_iter(), to).then_some(to)
             }
-            None => None,
+            _ => None,
         };
         match quiet {
             Some(to) => self
@@ -180,6 +166,9 @@ impl<R: Real> Tracer<R> {
                 .map_err(past)?,
             None => self.release_group()?,
         }
+        // (an iteration of the loop, counted as work, not as an event)
+        self.events -= 1;
+        self.leap_work += 1;
         Ok(StepKind::Stepped {
             fronts: self.stepped - before,
         })
@@ -218,7 +207,12 @@ impl<R: Real> Tracer<R> {
         from_above: R,
         parents: &[u32],
     ) -> Result<StepKind, WaveError> {
-        self.step_group(t)?;
+        // (an arrival from below just before `t` takes it into its event)
+        if self.step_group_taking(t, Some((t, from_above)))? {
+            return Ok(StepKind::Interface(
+                self.group.as_deref().map_or(0, |g| g.top),
+            ));
+        }
         let Some(mut g) = self.group.take() else {
             return Ok(StepKind::Interface(0));
         };
