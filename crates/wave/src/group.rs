@@ -75,9 +75,9 @@ pub(crate) struct Dropped {
 #[derive(Debug, Clone)]
 pub(crate) struct Group<R> {
     /// The slow layer just above: the group's layers are `0..top`.
-    pub top: usize,
+    pub(crate) top: usize,
     /// Whether the group's fronts are here (stepped) or in the loop's lanes.
-    pub active: bool,
+    pub(crate) active: bool,
     /// Per lane of the group (`Lane::index`): births on lattice points.
     points: Vec<LatticePoints<R>>,
     exact: Vec<Exact<R>>,
@@ -91,20 +91,20 @@ pub(crate) struct Group<R> {
     keep_above: Vec<R>,
     keep_at_most: usize,
     /// Every front arriving before this has been followed.
-    pub reached: R,
+    pub(crate) reached: R,
     /// The longest step.
-    pub step: R,
+    step: R,
     /// Per lane: the jumps born since the loop's bases last took them.
-    pub born_sums: Vec<R>,
-    pub dropped: Dropped,
+    born_sums: Vec<R>,
+    dropped: Dropped,
     /// Fronts followed since the loop last counted them.
-    pub followed: u64,
+    followed: u64,
     /// Fronts sent into the layer above, `(born, jump)`, for the loop.
-    pub sent: Vec<(R, R)>,
+    sent: Vec<(R, R)>,
     /// No try to take the group over before this many loop events.
-    pub retry: u64,
+    retry: u64,
     /// The leaps' thresholds of layers `0..=top`, while stepped.
-    pub saved_leap_after: Vec<R>,
+    saved_leap_after: Vec<R>,
     /// Exact fronts made so far (their `order`).
     made: u64,
     /// Lattice points a kept front was born on after they took a deposit:
@@ -118,11 +118,11 @@ pub(crate) struct Group<R> {
     /// its layer's down lane's, and a lower layer's before a higher one's,
     /// so such births come before a kept front of their lane leaves at that
     /// instant, and the others after.
-    pub from_up: bool,
+    from_up: bool,
     /// The loop's next front from above while a step runs, and whether the
     /// step took it (an arrival from below took it into its event).
-    pub input: Option<(R, R)>,
-    pub input_taken: bool,
+    input: Option<(R, R)>,
+    input_taken: bool,
     /// Which arrivals at one boundary are one event (the loop's window).
     window: Window<R>,
     /// Scratch: a lane's due points, due exact fronts, a boundary's
@@ -131,6 +131,60 @@ pub(crate) struct Group<R> {
     due: Vec<Exact<R>>,
     below: Vec<(R, R)>,
     above: Vec<(R, R)>,
+    /// Scratch: a lane's fronts sorted in its order; the wall's ahead.
+    tagged: Vec<Tagged<R>>,
+    wall: Vec<(R, R)>,
+}
+
+/// A front of a lane with what sorts fronts arriving together as the
+/// loop's lane holds them: birth, then exact fronts born ahead of a
+/// lattice point's front, the point's, the others, each in birth order.
+#[derive(Debug, Clone, Copy)]
+struct Tagged<R> {
+    arrives: R,
+    born: R,
+    /// 0: an exact front ahead of the point's, 1: the point's, 2: behind.
+    rank: u8,
+    order: u64,
+    jump: R,
+}
+
+impl<R: Real> Tagged<R> {
+    fn on_point(arrives: R, born: R, jump: R) -> Self {
+        let (rank, order) = (1, 0);
+        Self {
+            arrives,
+            born,
+            rank,
+            order,
+            jump,
+        }
+    }
+
+    fn exact(e: &Exact<R>, transit: R) -> Self {
+        let rank = if e.ahead { 0 } else { 2 };
+        let (born, order, jump) = (e.born, e.order, e.jump);
+        Self {
+            arrives: born + transit,
+            born,
+            rank,
+            order,
+            jump,
+        }
+    }
+}
+
+/// Sorts a lane's fronts as the loop's lane takes them (see [`Tagged`]).
+fn in_lane_order<R: Real>(fronts: &mut [Tagged<R>]) {
+    use std::cmp::Ordering::Equal;
+    fronts.sort_by(|a, b| {
+        a.arrives
+            .partial_cmp(&b.arrives)
+            .unwrap_or(Equal)
+            .then(a.born.partial_cmp(&b.born).unwrap_or(Equal))
+            .then(a.rank.cmp(&b.rank))
+            .then(a.order.cmp(&b.order))
+    });
 }
 
 /// A layer whose neighbours are all this many times slower leaps well on
@@ -208,6 +262,8 @@ impl<R: Real> Group<R> {
             due: Vec::new(),
             below: Vec::new(),
             above: Vec::new(),
+            tagged: Vec::new(),
+            wall: Vec::new(),
         }
     }
 
@@ -421,33 +477,35 @@ impl<R: Real> Group<R> {
     /// jump)`, in the order a step takes them (`step.rs`, `arrivals`):
     /// fronts arriving together in the lane's order, as the loop's wall
     /// events take them one by one.
-    pub(crate) fn wall_ahead(&self, to: R) -> Vec<(R, R)> {
+    pub(crate) fn wall_ahead(&mut self, to: R) -> Vec<(R, R)> {
         let transit = self.layers[0].transit_time;
         let lane = &self.points[1];
-        let mut ahead: Vec<(R, R, u8, u64, R)> = Vec::new();
+        let ahead = &mut self.tagged;
+        ahead.clear();
         for (j, &x) in lane.points.iter().enumerate() {
             let born = R::of((lane.base + j as i64) as f64) * self.spacing[0];
             if born + transit >= to {
                 break;
             }
             if x != R::zero() {
-                ahead.push((born + transit, born, 1, 0, x));
+                ahead.push(Tagged::on_point(born + transit, born, x));
             }
         }
-        for e in self.exact.iter().filter(|e| e.lane == 1) {
-            if e.born + transit < to {
-                let tag = if e.ahead { 0 } else { 2 };
-                ahead.push((e.born + transit, e.born, tag, e.order, e.jump));
-            }
-        }
-        ahead.sort_by(|a, b| {
-            a.0.partial_cmp(&b.0)
-                .unwrap_or(std::cmp::Ordering::Equal)
-                .then(a.1.partial_cmp(&b.1).unwrap_or(std::cmp::Ordering::Equal))
-                .then(a.2.cmp(&b.2))
-                .then(a.3.cmp(&b.3))
-        });
-        ahead.iter().map(|a| (a.0, a.4)).collect()
+        let exact = self
+            .exact
+            .iter()
+            .filter(|e| e.lane == 1 && e.born + transit < to);
+        ahead.extend(exact.map(|e| Tagged::exact(e, transit)));
+        in_lane_order(ahead);
+        let mut wall = std::mem::take(&mut self.wall);
+        wall.clear();
+        wall.extend(ahead.iter().map(|a| (a.arrives, a.jump)));
+        wall
+    }
+
+    /// Hands back the vector [`Group::wall_ahead`] lent.
+    pub(crate) fn return_wall(&mut self, wall: Vec<(R, R)>) {
+        self.wall = wall;
     }
 
     /// How many fronts the group holds.

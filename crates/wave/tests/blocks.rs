@@ -3,10 +3,10 @@
 //! event loop that follows every front of the block.
 
 use impact_model::{Layer, Outcome, Rod, Scene};
-use impact_wave::{Resolution, WaveConfig, simulate};
+use impact_wave::{WaveConfig, simulate};
 
 mod common;
-use common::{XorShift, exact_run};
+use common::{XorShift, exact_run, ladder};
 
 fn bound(o: &Outcome) -> f64 {
     o.error_bound.expect("a bound")
@@ -42,21 +42,6 @@ fn answered_within_bound_of_exact(rod: &Rod, exact_events: u64) {
         bound(&x)
     );
     assert!(d <= bound(&o) + bound(&x));
-}
-
-/// A merged run (the ladder) even where the exact run would fit, with or
-/// without blocks.
-fn ladder(rod: &Rod, fast_blocks: bool) -> Outcome {
-    let config = WaveConfig {
-        resolution: Resolution::Auto {
-            exact_events: 1_000,
-            budget_events: 4_000_000,
-            target: 1e-6,
-        },
-        fast_blocks,
-        ..WaveConfig::default()
-    };
-    simulate(rod, &config).expect("a merged outcome")
 }
 
 /// Slow layers around a block of two or three layers a thousand to ten
@@ -105,7 +90,13 @@ fn blocks_land_within_their_bound_of_the_exact_value() {
     for k in 0..6 {
         let scene = matched_block(&mut rng);
         let rod = scene.validate().unwrap();
-        let o = ladder(&rod, true);
+        let o = ladder(
+            &rod,
+            WaveConfig {
+                fast_blocks: true,
+                ..WaveConfig::default()
+            },
+        );
         assert!(answered(&o), "scene {k}: no block answered\n{o:?}");
         let x = exact_run(&rod, 4_000_000, true)
             .unwrap_or_else(|| panic!("scene {k}: the exact run did not fit\n{scene:?}"));
@@ -143,8 +134,20 @@ fn blocks_agree_with_the_loop_where_the_block_rings_long() {
         (1.0495878272608952, 505785077767.1679, 2.248781579086109),
         (0.6059478279156085, 1780693.6578908376, 1.1835804440683804),
     ]);
-    let on = ladder(&rod, true);
-    let off = ladder(&rod, false);
+    let on = ladder(
+        &rod,
+        WaveConfig {
+            fast_blocks: true,
+            ..WaveConfig::default()
+        },
+    );
+    let off = ladder(
+        &rod,
+        WaveConfig {
+            fast_blocks: false,
+            ..WaveConfig::default()
+        },
+    );
     assert!(answered(&on), "{on:?}");
     assert!(!answered(&off), "{off:?}");
     let d = (on.restitution - off.restitution).abs();

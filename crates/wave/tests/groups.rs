@@ -2,11 +2,11 @@
 //! `WaveConfig::step_bottom_group`) against the exact engine and against
 //! the event loop that takes every front of the group one by one.
 
-use impact_model::{Layer, Outcome, Rod, Scene};
-use impact_wave::{Resolution, WaveConfig, simulate};
+use impact_model::{Layer, Outcome, Scene};
+use impact_wave::WaveConfig;
 
 mod common;
-use common::{XorShift, exact_run};
+use common::{XorShift, exact_run, ladder};
 
 fn bound(o: &Outcome) -> f64 {
     o.error_bound.expect("a bound")
@@ -15,21 +15,6 @@ fn bound(o: &Outcome) -> f64 {
 /// The group the outcome says it stepped.
 fn stepped(o: &Outcome) -> Option<[usize; 2]> {
     o.error_estimate.as_ref().and_then(|e| e.stepped_group)
-}
-
-/// A merged run (the ladder) even where the exact run would fit, with or
-/// without the stepped group.
-fn ladder(rod: &Rod, group: bool) -> Outcome {
-    let config = WaveConfig {
-        resolution: Resolution::Auto {
-            exact_events: 1_000,
-            budget_events: 4_000_000,
-            target: 1e-6,
-        },
-        step_bottom_group: group,
-        ..WaveConfig::default()
-    };
-    simulate(rod, &config).expect("a merged outcome")
 }
 
 /// Two or three fast layers at the wall, within a factor four of one
@@ -81,9 +66,21 @@ fn stepped_groups_land_within_their_bound_of_the_exact_value_and_the_loop() {
     for k in 0..6 {
         let (scene, group) = fast_bottom(&mut rng);
         let rod = scene.validate().expect("a valid rod");
-        let on = ladder(&rod, true);
+        let on = ladder(
+            &rod,
+            WaveConfig {
+                step_bottom_group: true,
+                ..WaveConfig::default()
+            },
+        );
         assert_eq!(stepped(&on), Some([0, group - 1]), "scene {k}\n{on:?}");
-        let off = ladder(&rod, false);
+        let off = ladder(
+            &rod,
+            WaveConfig {
+                step_bottom_group: false,
+                ..WaveConfig::default()
+            },
+        );
         assert!(stepped(&off).is_none());
         eprintln!(
             "scene {k}: {} layers, stepped e = {:.10} ± {:.1e}, loop {:.10} ± {:.1e}",
@@ -128,6 +125,12 @@ fn a_bottom_that_leaps_on_its_own_is_not_stepped() {
     let rod = Scene::elastic_stack(1.0, &[(1.0, 1e6, 1.0), (1.0, 1e2, 1.0), (1.0, 1e-3, 1.0)])
         .validate()
         .expect("a valid rod");
-    let o = ladder(&rod, true);
+    let o = ladder(
+        &rod,
+        WaveConfig {
+            step_bottom_group: true,
+            ..WaveConfig::default()
+        },
+    );
     assert!(stepped(&o).is_none(), "{o:?}");
 }

@@ -1,7 +1,7 @@
 //! The group's steps: every front arriving before a step's end, lane by
 //! lane, the wall's in the order they come.
 
-use super::{Exact, Group};
+use super::{Group, Tagged, in_lane_order};
 use crate::engine::Tracer;
 use crate::error::WaveError;
 use crate::lane::Direction;
@@ -48,35 +48,24 @@ impl<R: Real> Group<R> {
         let transit = self.layers[i / 2].transit_time;
         // fronts arriving together in the loop's lane order: a lattice
         // point after the exact fronts ahead of it, before the others
-        let mut exact: Vec<&Exact<R>> = self.due.iter().filter(|e| e.lane == i).collect();
-        if !exact.is_empty() {
-            // (births apart may arrive together after rounding: birth
-            // order first, as the lane holds them)
-            exact.sort_by_key(|e| e.order);
+        // (births apart may arrive together after rounding: birth order
+        // first, as the lane holds them)
+        if self.due.iter().any(|e| e.lane == i) {
             let s = self.spacing[i / 2];
-            let mut tagged: Vec<(R, R, u8, R)> = Vec::with_capacity(into.len() + exact.len());
+            let mut tagged = std::mem::take(&mut self.tagged);
+            tagged.clear();
             for (j, &x) in self.run.iter().enumerate() {
                 if x != R::zero() {
                     let born = R::of((first + j as i64) as f64) * s;
-                    tagged.push((born + transit, born, 1, x));
+                    tagged.push(Tagged::on_point(born + transit, born, x));
                 }
             }
-            tagged.extend(exact.iter().map(|e| {
-                (
-                    e.born + transit,
-                    e.born,
-                    if e.ahead { 0 } else { 2 },
-                    e.jump,
-                )
-            }));
-            tagged.sort_by(|a, b| {
-                a.0.partial_cmp(&b.0)
-                    .unwrap_or(std::cmp::Ordering::Equal)
-                    .then(a.1.partial_cmp(&b.1).unwrap_or(std::cmp::Ordering::Equal))
-                    .then(a.2.cmp(&b.2))
-            });
+            let exact = self.due.iter().filter(|e| e.lane == i);
+            tagged.extend(exact.map(|e| Tagged::exact(e, transit)));
+            in_lane_order(&mut tagged);
             into.clear();
-            into.extend(tagged.iter().map(|&(t, _, _, d)| (t, d)));
+            into.extend(tagged.iter().map(|t| (t.arrives, t.jump)));
+            self.tagged = tagged;
         }
         self.followed += into.len() as u64;
     }

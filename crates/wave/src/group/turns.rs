@@ -149,13 +149,17 @@ impl<R: Real> Tracer<R> {
     pub(crate) fn group_tick(&mut self) -> Result<StepKind, WaveError> {
         let before = self.stepped;
         self.step_group(self.now)?;
-        let quiet = match self.group.as_deref() {
+        let quiet = match self.group.as_deref_mut() {
             // a group that holds nothing goes back to the loop, whose
             // queue then says whether anything is left to happen
             Some(g) if g.len() > 0 => {
                 let to = self.now + g.step;
                 let wall = g.wall_ahead(to);
-                self.wall_quiet(wall.into_iter(), to).then_some(to)
+                let quiet = self.wall_quiet(wall.iter().copied(), to);
+                if let Some(g) = self.group.as_deref_mut() {
+                    g.return_wall(wall);
+                }
+                quiet.then_some(to)
             }
             _ => None,
         };

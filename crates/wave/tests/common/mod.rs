@@ -1,6 +1,6 @@
 #![allow(dead_code)]
 use impact_model::{Bilayer, Outcome, Rod};
-use impact_wave::{WaveConfig, WaveEngine, simulate};
+use impact_wave::{Resolution, WaveConfig, WaveEngine, simulate};
 
 pub fn rod(x: f64, alpha: f64) -> Rod {
     Bilayer::new(x, alpha).unwrap().scene().validate().unwrap()
@@ -8,6 +8,21 @@ pub fn rod(x: f64, alpha: f64) -> Rod {
 
 pub fn run(x: f64, alpha: f64) -> Outcome {
     simulate(&rod(x, alpha), &WaveConfig::default()).unwrap()
+}
+
+/// A merged run (the ladder) even where the exact run would fit: its
+/// first lattice from 1,000 events, aiming at `1e-6` within 4 M events,
+/// with `config`'s other settings.
+pub fn ladder(rod: &Rod, config: WaveConfig) -> Outcome {
+    let config = WaveConfig {
+        resolution: Resolution::Auto {
+            exact_events: 1_000,
+            budget_events: 4_000_000,
+            target: 1e-6,
+        },
+        ..config
+    };
+    simulate(rod, &config).expect("a merged outcome")
 }
 
 /// Runs to the end and returns the engine, for field checks.
@@ -65,7 +80,7 @@ impl XorShift {
 /// them).
 pub fn exact_run(rod: &Rod, max_events: u64, leap: bool) -> Option<Outcome> {
     let config = WaveConfig {
-        resolution: impact_wave::Resolution::Exact,
+        resolution: Resolution::Exact,
         precision: impact_wave::Precision::Double,
         leap_quiet_layers: leap,
         max_events,
