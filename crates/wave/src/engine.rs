@@ -170,6 +170,9 @@ pub struct Tracer<R: Real> {
     pub(crate) exact_trains: crate::leap::ExactTrains<R>,
     /// Geometric sums `(q, n) -> (s0, s1, s2)` in slots by `n` (`leap.rs`).
     pub(crate) sums_memo: Vec<(R, u64, (R, R, R))>,
+    /// The last powers `q^k` a leap asked for (`Tracer::pow_remembered`),
+    /// `(q, k, q^k)`: one per sign of the ratio.
+    pub(crate) pow_memo: [(R, u64, R); 2],
     /// A leap's buffers, kept for the next.
     pub(crate) scratch: crate::leap::LeapScratch<R>,
     /// The last `(|q|, ln |q|)` a leap needed.

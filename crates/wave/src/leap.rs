@@ -51,7 +51,7 @@ mod trains;
 mod wall;
 
 use arrivals::Taken;
-use crossing::{count_before_near, pow_small};
+use crossing::count_before_near;
 pub(crate) use exact::ExactTrains;
 pub(crate) use scratch::LeapScratch;
 pub(crate) use scratch::TogetherRoom;
@@ -432,7 +432,7 @@ impl<R: Real> Tracer<R> {
             }
             // where the front is when the leap ends
             let last = p.tau + R::of((nb - 1) as f64) * period;
-            let arriving = p.amp * pow_small(q, nb - 1);
+            let arriving = p.amp * self.pow_remembered(q, nb - 1);
             let going_up = ends.bottom * arriving;
             if nt == nb {
                 let back = q * arriving;

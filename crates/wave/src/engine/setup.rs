@@ -190,6 +190,7 @@ impl<R: Real> Tracer<R> {
             deposits: room.deposits,
             exact_trains: room.exact_trains,
             sums_memo: Vec::new(),
+            pow_memo: [(R::zero(), 0, R::one()); 2],
             scratch: room.scratch,
             ln_memo: None,
             batch: room.batch,
