@@ -207,6 +207,10 @@ pub fn summary(title: &str, o: &Timed<Outcome>) -> String {
             .error_estimate
             .as_ref()
             .map_or(&[][..], |e| &e.answered_blocks[..]);
+        let nested = o
+            .error_estimate
+            .as_ref()
+            .map_or(&[][..], |e| &e.nested_layers[..]);
         for [a, b] in blocks {
             // their fronts are traced once, outside the event count
             let _ = write!(
@@ -215,6 +219,9 @@ pub fn summary(title: &str, o: &Timed<Outcome>) -> String {
                 a + 1,
                 b + 1
             );
+            for f in nested.iter().filter(|&&f| (*a..=*b).contains(&f)) {
+                let _ = write!(s, ", t{} within it by its own", f + 1);
+            }
         }
         let _ = writeln!(s);
     }

@@ -109,6 +109,12 @@ pub struct ErrorEstimate {
     /// `transit_times` list). Their error is in the merged part.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub answered_blocks: Vec<[usize; 2]>,
+    /// Layers inside those blocks that their traces answered by the
+    /// layer's own response instead of following its fronts (a block
+    /// within the block), counted as `answered_blocks`. Their error is in
+    /// the merged part.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub nested_layers: Vec<usize>,
     /// The bottom group a merged run followed in steps between the wall's
     /// decisions instead of event by event, its first and last layer (the
     /// same lattice model: its error is in the merged part).

@@ -24,6 +24,8 @@ fn main() {
         // blocks of fast layers answered by their response only with
         // `BLOCKS=1` (on by default in runs): the loop's own events here
         fast_blocks: std::env::var_os("BLOCKS").is_some(),
+        // a block's fastest layer nested in its trace unless `NONEST=1`
+        nest_blocks: std::env::var_os("NONEST").is_none(),
         // the bottom group stepped only with `GROUP=1`
         step_bottom_group: std::env::var_os("GROUP").is_some(),
         ..WaveConfig::default()

@@ -47,6 +47,18 @@ pub(crate) const FRONT_ADDS: u64 = 64;
 /// a few megabytes of taps for each port.
 const PROBE_CELLS: i64 = 1 << 20;
 
+/// What a block's trace may nest (`response/nested.rs`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Nesting {
+    /// Its fastest layer, where that pays.
+    Allowed,
+    /// Nothing: it follows every front of its layers.
+    Never,
+    /// Nothing, and it is itself nested in a trace: its response's large
+    /// fronts go on the lattice with the rest.
+    Inside,
+}
+
 /// One port: where the block meets a slower neighbour, and the arrivals
 /// whose responses it still delivers into the neighbour's lane.
 #[derive(Debug, Clone)]
@@ -85,19 +97,21 @@ pub(crate) struct Block<R> {
 
 impl<R: Real> Block<R> {
     /// The block `lower..=upper` of a rod's layers; `spacing` gives a
-    /// lane's lattice spacing.
+    /// lane's lattice spacing; `nesting`, what its trace may nest or
+    /// whether it is nested itself (`response/nested.rs`).
     pub(crate) fn new(
         layers: &[LayerConst<R>],
         interfaces: &[InterfaceCoefficients<R>],
         (lower, upper): (usize, usize),
         spacing: &dyn Fn(usize, Direction) -> R,
+        nesting: Nesting,
     ) -> Self {
         let top = upper + 1 == layers.len();
         let mut outs = vec![(lower - 1, Direction::Down)];
         if !top {
             outs.push((upper + 1, Direction::Up));
         }
-        let shape = Shape {
+        let mut shape = Shape {
             layers: layers[lower..=upper].to_vec(),
             inner: interfaces[lower..upper].to_vec(),
             lower: interfaces[lower - 1],
@@ -108,7 +122,12 @@ impl<R: Real> Block<R> {
                 .collect(),
             port_spacing: outs.iter().map(|&(j, d)| spacing(j, d)).collect(),
             port_speed: outs.iter().map(|&(j, _)| layers[j].wave_speed).collect(),
+            nest: None,
+            keep_exact: nesting != Nesting::Inside,
         };
+        if nesting == Nesting::Allowed {
+            shape.nest = response::nested_layer(&shape);
+        }
         let traces = (0..outs.len()).map(|j| Trace::start(&shape, j)).collect();
         let ports = outs
             .iter()
@@ -212,7 +231,12 @@ impl<R: Real> Block<R> {
 
     /// Port `o`'s deliveries due by `now` into `due` (`(born, jump)`); when
     /// the next is due, and the work done.
-    pub(crate) fn due(&mut self, o: usize, now: R, due: &mut Vec<(R, R)>) -> (Option<R>, u64) {
+    pub(crate) fn due(
+        &mut self,
+        o: usize,
+        now: R,
+        due: &mut Vec<(R, R)>,
+    ) -> (Option<R>, u64, usize) {
         let mut work = 0;
         let h = self.ports[o].spacing;
         let waiting = |port: &Port<R>| port.arrivals.iter().any(|a| !a.is_empty());
@@ -243,6 +267,7 @@ impl<R: Real> Block<R> {
             }
             self.ports[o].next += 1;
         }
+        let on_lattice = due.len();
         let port = &mut self.ports[o];
         while let Some(&(at, jump)) = port.exact.front() {
             if at > now {
@@ -256,7 +281,46 @@ impl<R: Real> Block<R> {
             (Some(a), Some(&(b, _))) => Some(a.min(b)),
             (a, b) => a.or(b.map(|e| e.0)),
         };
-        (next, work)
+        (next, work, on_lattice)
+    }
+
+    /// The most velocity (`sum |d| c`) the block may still deliver: each
+    /// held arrival times everything its input's response delivers, and
+    /// the large fronts waiting; infinite while a response with arrivals
+    /// held is still traced.
+    pub(crate) fn pending(&self) -> R {
+        let mut pending = R::zero();
+        for (j, trace) in self.traces.iter().enumerate() {
+            // (each port holds the arrivals on its own lattice, and lets
+            // them go when its own taps are past)
+            let held = self
+                .ports
+                .iter()
+                .fold(R::zero(), |h, port| h.max(port.arrivals[j].total_abs()));
+            if held == R::zero() {
+                continue;
+            }
+            if !trace.done {
+                return -R::neg_infinity();
+            }
+            let gain = (0..self.ports.len()).fold(R::zero(), |g, o| {
+                let taps = trace.taps[o].iter().fold(R::zero(), |s, &t| s + t.abs());
+                let exact = trace.exact[o].iter().fold(R::zero(), |s, e| s + e.1.abs());
+                g + (taps + exact) * self.shape.port_speed[o]
+            });
+            pending += held * gain;
+        }
+        for (o, port) in self.ports.iter().enumerate() {
+            let exact = port.exact.iter().fold(R::zero(), |s, e| s + e.1.abs());
+            pending += exact * self.shape.port_speed[o];
+        }
+        pending
+    }
+
+    /// The layer (of the rod) its traces answer by that layer's own
+    /// response, if any.
+    pub(crate) fn nested(&self) -> Option<usize> {
+        self.shape.nest.map(|f| self.lower + f)
     }
 
     /// What the arrivals at inputs whose trace is done left in the block

@@ -163,6 +163,11 @@ pub struct WaveConfig {
     /// response to what it sends its neighbours. Off: the loop takes every
     /// boundary event inside the block.
     pub fast_blocks: bool,
+    /// Within a block's trace, answer its fastest layer by that layer's
+    /// own response (`block/response/nested.rs`) where it holds most of
+    /// the trace's lattice points and rings out quickly between the
+    /// block's slower layers. Off: the trace follows every front of it.
+    pub nest_blocks: bool,
     /// Step the bottom group between the wall's decisions (`group.rs`,
     /// merged runs with nothing recorded): two or more layers at the wall,
     /// each at least eight times faster than the layer above, followed in
@@ -204,6 +209,7 @@ impl Default for WaveConfig {
             leap_quiet_layers: true,
             leap_arrivals: LeapArrivals::Merged,
             fast_blocks: true,
+            nest_blocks: true,
             step_bottom_group: true,
         }
     }

@@ -157,6 +157,13 @@ pub fn solve_observed(
                 b + 1
             ));
         }
+        for f in fine.nested_layers() {
+            estimate.nested_layers.push(f);
+            parts.push(format!(
+                "within it, the layer of t{} answered by its own response (nest_blocks)",
+                f + 1
+            ));
+        }
         if let Some(((a, b), fronts)) = fine.stepped_group() {
             estimate.stepped_group = Some([a, b]);
             parts.push(format!(

@@ -21,7 +21,12 @@ impl<R: Real> Tracer<R> {
     /// The rod's blocks of fast layers (merged runs), with their layers and
     /// neighbours kept from leaping: the neighbours' lanes take the
     /// blocks' deliveries, which a leap would not see coming.
-    pub(crate) fn find_blocks(&mut self) {
+    pub(crate) fn find_blocks(&mut self, nest: bool) {
+        let nesting = if nest {
+            super::Nesting::Allowed
+        } else {
+            super::Nesting::Never
+        };
         let transits: Vec<f64> = self
             .layers
             .iter()
@@ -35,13 +40,14 @@ impl<R: Real> Tracer<R> {
         let mut list = Vec::new();
         let mut probed = 0;
         for run in super::candidates(&transits) {
-            if super::apart(run, &chosen) && self.block_pays(&transits, run, &mut probed) {
+            if super::apart(run, &chosen) && self.block_pays(&transits, run, nesting, &mut probed) {
                 chosen.push(run);
                 list.push(super::Block::new(
                     &self.layers,
                     &self.interfaces,
                     run,
                     &spacing,
+                    nesting,
                 ));
             }
         }
@@ -61,7 +67,13 @@ impl<R: Real> Tracer<R> {
     /// probe of the block traced on the ladder's first lattice, the same
     /// for every level of a ladder (how long a block rings is its physics,
     /// not its lattice's); the probe's fronts are added to `probed`.
-    fn block_pays(&self, transits: &[f64], run: (usize, usize), probed: &mut u64) -> bool {
+    fn block_pays(
+        &self,
+        transits: &[f64],
+        run: (usize, usize),
+        nesting: super::Nesting,
+        probed: &mut u64,
+    ) -> bool {
         let allowance = super::allowance(transits, run);
         if super::priced_run(transits) < allowance {
             return true;
@@ -74,7 +86,8 @@ impl<R: Real> Tracer<R> {
                 t_max,
             ))
         };
-        let mut probe = super::Block::new(&self.layers, &self.interfaces, run, &first_lattice);
+        let mut probe =
+            super::Block::new(&self.layers, &self.interfaces, run, &first_lattice, nesting);
         let (rings_out, followed) = probe.rings_out_within(R::of(allowance));
         *probed += followed;
         rings_out
@@ -131,7 +144,7 @@ impl<R: Real> Tracer<R> {
         let mut due = std::mem::take(&mut self.blocks.spawns);
         due.clear();
         let block = &mut self.blocks.list[bi];
-        let (next, work) = block.due(o, self.now, &mut due);
+        let (next, work, _) = block.due(o, self.now, &mut due);
         let rest = block.take_rest();
         let (layer, dir) = block.ports[o].out;
         let key = EventKey::Layer(block.ports[o].key_layer as u32);

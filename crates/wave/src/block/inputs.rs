@@ -33,6 +33,11 @@ impl<R: Real> LatticeInputs<R> {
         self.jumps.is_empty()
     }
 
+    /// `sum |jump|` over the points held.
+    pub(crate) fn total_abs(&self) -> R {
+        self.jumps.iter().fold(R::zero(), |s, &d| s + d.abs())
+    }
+
     /// The oldest point held.
     pub(crate) fn first(&self) -> Option<i64> {
         (!self.jumps.is_empty()).then_some(self.first)

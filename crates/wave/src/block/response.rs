@@ -23,6 +23,10 @@ use crate::engine::LayerConst;
 use crate::lane::LatticePoints as TraceLane;
 use crate::real::Real;
 use impact_model::InterfaceCoefficients;
+use nested::Inner;
+
+mod nested;
+pub(crate) use nested::nested_layer;
 
 /// What the block still holds, as a share of the input's velocity, when
 /// its trace is done.
@@ -59,6 +63,14 @@ pub(crate) struct Shape<R> {
     pub port_spacing: Vec<R>,
     /// Wave speeds of the neighbours an input comes from (lower, upper).
     pub port_speed: Vec<R>,
+    /// The layer answered by its own response inside the trace, if any
+    /// (`response/nested.rs`).
+    pub nest: Option<usize>,
+    /// Whether the response's large fronts are followed at their exact
+    /// times: not in a nested block, where every lattice point of its
+    /// neighbours arrives and each would queue them (on survey rod 20 the
+    /// queues took half the time); its neighbours' own lattices hold them.
+    pub keep_exact: bool,
 }
 
 /// The response to a unit jump arriving at one input port, traced as far
@@ -75,6 +87,8 @@ pub(crate) struct Trace<R> {
     kept: Vec<(R, R, usize)>,
     /// The points of a lane being taken (room kept from step to step).
     run: Vec<R>,
+    /// A run's arrivals at the nested layer, `(time, jump)` (room kept).
+    arrivals: Vec<(R, R)>,
     /// How many were ever kept.
     kept_ever: usize,
     /// A front is kept when its velocity jump is at least this.
@@ -96,6 +110,8 @@ pub(crate) struct Trace<R> {
     /// Fronts followed.
     followed: u64,
     steps: u64,
+    /// The nested layer's block, if the shape nests one.
+    inner: Option<Inner<R>>,
 }
 
 /// Splits a jump born at `t` between the lattice points around it: the
@@ -125,20 +141,28 @@ impl<R: Real> Trace<R> {
         // fronts too small to follow, and when to stop, in velocity per
         // unit input (the input's velocity jump is `c_in`)
         let stop = R::of(REST) * shape.port_speed[input];
-        let step = shape
-            .layers
-            .iter()
-            .zip(&shape.spacing)
-            .map(|(l, &s)| l.transit_time - s)
-            .fold(-R::neg_infinity(), |a, b| a.min(b));
+        let step = match shape.nest {
+            Some(f) => Self::nested_step(shape, f),
+            None => shape
+                .layers
+                .iter()
+                .zip(&shape.spacing)
+                .map(|(l, &s)| l.transit_time - s)
+                .fold(-R::neg_infinity(), |a, b| a.min(b)),
+        };
         let mut trace = Self {
             lanes: (0..2 * nb).map(|_| TraceLane::default()).collect(),
             taps: vec![Vec::new(); shape.port_spacing.len()],
             exact: vec![Vec::new(); shape.port_spacing.len()],
             kept: Vec::new(),
             run: Vec::new(),
+            arrivals: Vec::new(),
             kept_ever: 0,
-            keep: R::of(KEEP_SHARE) * shape.port_speed[input],
+            keep: if shape.keep_exact {
+                R::of(KEEP_SHARE) * shape.port_speed[input]
+            } else {
+                -R::neg_infinity()
+            },
             reached: R::zero(),
             step,
             steps: 0,
@@ -148,6 +172,7 @@ impl<R: Real> Trace<R> {
             stop,
             tiny: stop * R::of(1e-6),
             followed: 0,
+            inner: shape.nest.map(|f| Inner::new(shape, f)),
         };
         match (input, shape.upper) {
             (0, _) => trace.enter(shape, 0, true, R::zero(), shape.lower.up_transmitted, true),
@@ -253,7 +278,10 @@ impl<R: Real> Trace<R> {
     /// Follows every front arriving before `until` (or until done).
     fn extend_to(&mut self, shape: &Shape<R>, until: R) {
         while !self.done && self.reached < until {
-            if self.kept.is_empty() && self.lanes.iter().all(|l| l.points.is_empty()) {
+            if self.kept.is_empty()
+                && self.lanes.iter().all(|l| l.points.is_empty())
+                && self.nested_pending() == R::zero()
+            {
                 self.finish(shape);
                 break;
             }
@@ -277,6 +305,9 @@ impl<R: Real> Trace<R> {
             }
             for i in 0..self.lanes.len() {
                 self.take_lane(shape, i, end);
+            }
+            if self.inner.is_some() {
+                self.deliver_nested(shape, end);
             }
             self.reached = end;
         }
@@ -310,6 +341,27 @@ impl<R: Real> Trace<R> {
         self.followed += run.iter().filter(|&&d| d != R::zero()).count() as u64;
         let from = (first, s, transit);
         let top = shape.layers.len() - 1;
+        if let Some(input) = self.nested_input(m, up) {
+            // into the nested layer: the reflection here, the rest its
+            // block's arrival
+            let k = if up {
+                shape.inner[m].up_reflected
+            } else {
+                shape.inner[m - 1].down_reflected
+            };
+            self.push_run(shape, &run, from, (m, !up), k);
+            let mut arrivals = std::mem::take(&mut self.arrivals);
+            arrivals.clear();
+            for (j, &x) in run.iter().enumerate() {
+                if x != R::zero() {
+                    arrivals.push((R::of((first + j as i64) as f64) * s + transit, x));
+                }
+            }
+            self.arrive_nested(shape, input, &arrivals);
+            self.arrivals = arrivals;
+            self.run = run;
+            return;
+        }
         match (up, m) {
             (true, m) if m < top => {
                 let k = shape.inner[m];
@@ -398,6 +450,20 @@ impl<R: Real> Trace<R> {
     #[inline]
     fn scatter(&mut self, shape: &Shape<R>, m: usize, up: bool, at: R, d: R, exact: bool) {
         let top = shape.layers.len() - 1;
+        if let Some(input) = self.nested_input(m, up) {
+            let k = if up {
+                shape.inner[m].up_reflected
+            } else {
+                shape.inner[m - 1].down_reflected
+            };
+            self.enter(shape, m, !up, at, k * d, exact);
+            if exact {
+                self.arrive_nested_large(shape, input, at, d);
+            } else {
+                self.arrive_nested(shape, input, &[(at, d)]);
+            }
+            return;
+        }
         match (up, m) {
             (true, m) if m < top => {
                 let k = shape.inner[m];
@@ -441,15 +507,28 @@ impl<R: Real> Trace<R> {
             force += (d * l.modulus).abs();
         }
         self.kept.clear();
+        if let Some(f) = self.inner.as_ref().map(|i| i.layer) {
+            // what the nested block may still deliver, at the stiffer
+            // neighbour's force for its velocity
+            let pending = self.nested_pending();
+            let z = shape.layers[f - 1]
+                .impedance
+                .max(shape.layers[f + 1].impedance);
+            velocity += pending;
+            force += pending * z;
+        }
         self.rest = (velocity.to_f64(), force.to_f64());
         self.done = true;
     }
 
     /// The velocity the block's fronts could carry: `sum |d| c`.
     fn held(&self, shape: &Shape<R>) -> R {
-        let kept = self.kept.iter().fold(R::zero(), |s, &(_, d, lane)| {
-            s + (d * shape.layers[lane / 2].wave_speed).abs()
-        });
+        let kept = self
+            .kept
+            .iter()
+            .fold(self.nested_pending(), |s, &(_, d, lane)| {
+                s + (d * shape.layers[lane / 2].wave_speed).abs()
+            });
         self.lanes.iter().enumerate().fold(kept, |s, (i, lane)| {
             let c = shape.layers[i / 2].wave_speed;
             lane.points.iter().fold(s, |s, &d| s + (d * c).abs())

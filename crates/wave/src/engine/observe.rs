@@ -109,6 +109,12 @@ impl<R: Real> Tracer<R> {
             .collect()
     }
 
+    /// The layers inside those blocks whose traces answer them by their
+    /// own response (`WaveConfig::nest_blocks`).
+    pub fn nested_layers(&self) -> Vec<usize> {
+        self.blocks.list.iter().filter_map(|b| b.nested()).collect()
+    }
+
     /// The bottom group this run followed in steps
     /// (`WaveConfig::step_bottom_group`), its first and last layer, and
     /// the fronts the steps followed; none if it never stepped.

@@ -1,5 +1,5 @@
 #![allow(dead_code)]
-use impact_model::{Bilayer, Outcome, Rod};
+use impact_model::{Bilayer, Layer, Outcome, Rod, Scene};
 use impact_wave::{Resolution, WaveConfig, WaveEngine, simulate};
 
 pub fn rod(x: f64, alpha: f64) -> Rod {
@@ -8,6 +8,21 @@ pub fn rod(x: f64, alpha: f64) -> Rod {
 
 pub fn run(x: f64, alpha: f64) -> Outcome {
     simulate(&rod(x, alpha), &WaveConfig::default()).unwrap()
+}
+
+/// A layer of `length` with wave `speed` and `impedance`.
+pub fn layer_of(length: f64, speed: f64, impedance: f64) -> Layer {
+    let density = impedance / speed;
+    Layer::elastic(length, density * speed * speed, density)
+}
+
+/// A unit-speed impact of `layers`, bottom first, on the paper's wall.
+pub fn scene_of(layers: Vec<Layer>) -> Scene {
+    Scene {
+        impact_speed: 1.0,
+        layers,
+        wall_contact: None,
+    }
 }
 
 /// A merged run (the ladder) even where the exact run would fit: its
@@ -96,17 +111,17 @@ pub fn exact_run(rod: &Rod, max_events: u64, leap: bool) -> Option<Outcome> {
 /// A random rod of 2 to `most_layers` layers, unit impact speed: lengths
 /// uniform in `[0.2, 1.2)`, densities log-uniform in `[0.1, 10)`, wave
 /// speeds log-uniform in `[1, top_speed)`.
-pub fn random_scene(rng: &mut XorShift, most_layers: usize, top_speed: f64) -> impact_model::Scene {
+pub fn random_scene(rng: &mut XorShift, most_layers: usize, top_speed: f64) -> Scene {
     let n = 2 + (rng.next() * (most_layers - 1) as f64) as usize;
     let layers = (0..n)
         .map(|_| {
             let length = rng.uniform(0.2, 1.2);
             let density = rng.log_uniform(0.1, 10.0);
             let speed = rng.log_uniform(1.0, top_speed);
-            impact_model::Layer::elastic(length, density * speed * speed, density)
+            Layer::elastic(length, density * speed * speed, density)
         })
         .collect();
-    impact_model::Scene {
+    Scene {
         impact_speed: 1.0,
         layers,
         wall_contact: None,
