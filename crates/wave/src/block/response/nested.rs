@@ -12,7 +12,9 @@
 //! (`block.rs`), between neighbours that are the trace's lanes: what
 //! arrives at it from its two sides is put on those lanes' lattices, and
 //! its short response, traced once, is delivered into them at every step's
-//! end, the large fronts at their exact times. The trace stays the same
+//! end; the trace's own large fronts go through it at their exact times
+//! (a second copy of its response, with its large fronts apart). The
+//! trace stays the same
 //! lattice model, its nested layer answered as the run answers a block,
 //! and the ladder measures both with the rest.
 //!
