@@ -67,9 +67,11 @@ pub(crate) struct Shape<R> {
     /// (`response/nested.rs`).
     pub nest: Option<usize>,
     /// Whether the response's large fronts are followed at their exact
-    /// times: not in a nested block, where every lattice point of its
-    /// neighbours arrives and each would queue them (on survey rod 20 the
-    /// queues took half the time); its neighbours' own lattices hold them.
+    /// times: not in a nested block's response for the lattice points
+    /// arriving at it, where each arrival would queue them (on survey rod
+    /// 20 the queues took half the time); they go on its ports' lattices
+    /// with the rest, and the trace's own large fronts take a copy that
+    /// keeps them (`response/nested.rs`).
     pub keep_exact: bool,
 }
 
@@ -344,11 +346,7 @@ impl<R: Real> Trace<R> {
         if let Some(input) = self.nested_input(m, up) {
             // into the nested layer: the reflection here, the rest its
             // block's arrival
-            let k = if up {
-                shape.inner[m].up_reflected
-            } else {
-                shape.inner[m - 1].down_reflected
-            };
+            let k = Self::reflected_before_nested(shape, m, up);
             self.push_run(shape, &run, from, (m, !up), k);
             let mut arrivals = std::mem::take(&mut self.arrivals);
             arrivals.clear();
@@ -451,11 +449,7 @@ impl<R: Real> Trace<R> {
     fn scatter(&mut self, shape: &Shape<R>, m: usize, up: bool, at: R, d: R, exact: bool) {
         let top = shape.layers.len() - 1;
         if let Some(input) = self.nested_input(m, up) {
-            let k = if up {
-                shape.inner[m].up_reflected
-            } else {
-                shape.inner[m - 1].down_reflected
-            };
+            let k = Self::reflected_before_nested(shape, m, up);
             self.enter(shape, m, !up, at, k * d, exact);
             if exact {
                 self.arrive_nested_large(shape, input, at, d);

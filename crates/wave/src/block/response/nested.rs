@@ -199,6 +199,17 @@ impl<R: Real> Trace<R> {
         }
     }
 
+    /// What a front of layer `m` going up (`up`) or down reflects where it
+    /// meets the nested layer.
+    #[inline]
+    pub(super) fn reflected_before_nested(shape: &Shape<R>, m: usize, up: bool) -> R {
+        if up {
+            shape.inner[m].up_reflected
+        } else {
+            shape.inner[m - 1].down_reflected
+        }
+    }
+
     /// Jumps `d` arriving at the nested layer by `input` at `at`; what
     /// they add to points already delivered is placed now.
     pub(super) fn arrive_nested(&mut self, shape: &Shape<R>, input: usize, arrivals: &[(R, R)]) {
