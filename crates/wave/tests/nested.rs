@@ -4,7 +4,7 @@
 //! of its fronts.
 
 use impact_model::Rod;
-use impact_model::{Layer, Outcome, Scene};
+use impact_model::{Outcome, Scene};
 use impact_wave::{Resolution, WaveConfig, simulate};
 
 mod common;
@@ -127,13 +127,9 @@ fn a_layer_whose_response_costs_more_than_its_fronts_is_not_nested() {
         (1.0495878272608952, 505785077767.1679, 2.248781579086109),
         (0.6059478279156085, 1780693.6578908376, 1.1835804440683804),
     ];
-    let scene = scene_of(
-        layers
-            .iter()
-            .map(|&(l, e, rho)| Layer::elastic(l, e, rho))
-            .collect(),
-    );
-    let rod = scene.validate().expect("a valid scene");
+    let rod = Scene::elastic_stack(1.0, &layers)
+        .validate()
+        .expect("a valid scene");
     let o = ladder(&rod, true);
     assert!(nested(&o).is_empty(), "{o:?}");
 }
