@@ -26,6 +26,9 @@ fn main() {
         fast_blocks: std::env::var_os("BLOCKS").is_some(),
         // a block's fastest layer nested in its trace unless `NONEST=1`
         nest_blocks: std::env::var_os("NONEST").is_none(),
+        // small large fronts of a block's response on its ports' lattices
+        // unless `NOFOLD=1`
+        fold_small_exact: std::env::var_os("NOFOLD").is_none(),
         // the bottom group stepped only with `GROUP=1`
         step_bottom_group: std::env::var_os("GROUP").is_some(),
         ..WaveConfig::default()

@@ -25,12 +25,14 @@
 use crate::engine::LayerConst;
 use crate::lane::Direction;
 use crate::real::Real;
+use folded::Folded;
 use impact_model::InterfaceCoefficients;
 use inputs::LatticeInputs;
 use std::collections::VecDeque;
 
 mod choice;
 mod flow;
+mod folded;
 mod inputs;
 mod partitioned;
 mod response;
@@ -76,6 +78,16 @@ pub(crate) struct Port<R> {
     /// Fronts to deliver at their exact times (the responses' large
     /// fronts, see `response.rs`): born, jump; in time order.
     exact: VecDeque<(R, R)>,
+    /// Per input port, its response's large fronts here: delay, delay in
+    /// this port's spacings, jump (the trace's `exact`, all known before
+    /// the first arrival).
+    exact_per_input: Vec<Vec<(R, R, R)>>,
+    /// Large fronts under `keep_above` once scaled by their arrival, on
+    /// the lattice (`folded.rs`).
+    folded: Folded<R>,
+    /// What the neighbour's lane keeps where it is born; zero (nothing
+    /// folded) until [`Block::fold_below`] says.
+    keep_above: R,
     /// The block layer whose queue key schedules the deliveries.
     pub key_layer: usize,
 }
@@ -93,6 +105,10 @@ pub(crate) struct Block<R> {
     /// Per input port, until its trace is done: `sum |d|` and
     /// `sum |d| t` of its arrivals, whose rest is counted then.
     owed: Vec<(f64, f64)>,
+    /// The folded jumps `due` found on the points it delivered (`(born,
+    /// jump)`), to be deposited (never kept apart, as the fronts folded
+    /// into them would not have been); the caller empties it.
+    pub folded_due: Vec<(R, R)>,
 }
 
 impl<R: Real> Block<R> {
@@ -128,7 +144,7 @@ impl<R: Real> Block<R> {
         if nesting == Nesting::Allowed {
             shape.nest = response::nested_layer(&shape);
         }
-        let traces = (0..outs.len()).map(|j| Trace::start(&shape, j)).collect();
+        let traces: Vec<Trace<R>> = (0..outs.len()).map(|j| Trace::start(&shape, j)).collect();
         let ports = outs
             .iter()
             .enumerate()
@@ -139,6 +155,18 @@ impl<R: Real> Block<R> {
                 arrivals: vec![LatticeInputs::default(); outs.len()],
                 next: i64::MIN,
                 exact: VecDeque::new(),
+                exact_per_input: traces
+                    .iter()
+                    .map(|trace| {
+                        let h = shape.port_spacing[o];
+                        trace.exact[o]
+                            .iter()
+                            .map(|&(delay, jump)| (delay, delay / h, jump))
+                            .collect()
+                    })
+                    .collect(),
+                folded: Folded::default(),
+                keep_above: R::zero(),
                 key_layer: if o == 0 { lower } else { upper },
             })
             .collect();
@@ -149,6 +177,7 @@ impl<R: Real> Block<R> {
             traces,
             ports,
             owed: vec![(0.0, 0.0); outs.len()],
+            folded_due: Vec::new(),
         }
     }
 
@@ -183,35 +212,63 @@ impl<R: Real> Block<R> {
             .unwrap_or(R::zero())
     }
 
+    /// Port by port, the least jump the neighbour's lane keeps where it
+    /// is born (`MergeRule::Lattice`'s `keep_above`): a response's large
+    /// front scaled under it by its arrival goes on the port's lattice
+    /// (`folded.rs`). Until this is said, every large front is delivered
+    /// at its time.
+    pub(crate) fn fold_below(&mut self, keep_above: &dyn Fn(usize, Direction) -> R) {
+        for port in &mut self.ports {
+            port.keep_above = keep_above(port.out.0, port.out.1);
+        }
+    }
+
     /// A jump `d` arriving at input port `input` at `t`: put on each
     /// port's lattice. Its response on points a port has already delivered
     /// goes into `late` (`(port, born, jump)`), to be spawned now. The work
-    /// done (fronts traced, multiply-adds).
+    /// done (fronts traced, multiply-adds) and the large fronts put on a
+    /// lattice (`folded.rs`: merged, as the lane would have merged them).
     pub(crate) fn arrive(
         &mut self,
         input: usize,
         t: R,
         d: R,
         late: &mut Vec<(usize, R, R)>,
-    ) -> u64 {
-        let mut work = 0;
+    ) -> (u64, u64) {
+        let (mut work, mut folded) = (0, 0);
         let owed = &mut self.owed[input];
         owed.0 += d.abs().to_f64();
         owed.1 += d.abs().to_f64() * t.to_f64();
         for o in 0..self.ports.len() {
-            // the large fronts at their exact times
-            let exact = &mut self.ports[o].exact;
-            for &(delay, jump) in &self.traces[input].exact[o] {
-                let at = t + delay;
-                let i = exact.partition_point(|e| e.0 <= at);
-                exact.insert(i, (at, d * jump));
-            }
             let h = self.ports[o].spacing;
             let k = (t / h).floor();
             let f = (t - k * h) / h;
             let k = k.to_f64() as i64;
-            if self.ports[o].arrivals.iter().all(LatticeInputs::is_empty) {
-                self.ports[o].next = self.ports[o].next.max(k);
+            let port = &mut self.ports[o];
+            if port.arrivals.iter().all(LatticeInputs::is_empty) && port.folded.is_empty() {
+                port.next = port.next.max(k);
+            }
+            // the large fronts at their exact times, or on the lattice
+            // where the lane would put them there (`|d jump|` under its
+            // `keep_above`)
+            let under = if d == R::zero() {
+                R::zero()
+            } else {
+                port.keep_above / d.abs()
+            };
+            let x = t / h;
+            debug_assert_eq!(
+                port.exact_per_input[input].len(),
+                self.traces[input].exact[o].len()
+            );
+            for &(delay, per_h, jump) in &port.exact_per_input[input] {
+                if jump.abs() < under && port.folded.deposit(x + per_h, d * jump, port.next) {
+                    folded += 1;
+                    continue;
+                }
+                let at = t + delay;
+                let i = port.exact.partition_point(|e| e.0 <= at);
+                port.exact.insert(i, (at, d * jump));
             }
             for (k, a) in [(k, d * (R::one() - f)), (k + 1, d * f)] {
                 if a == R::zero() {
@@ -226,11 +283,13 @@ impl<R: Real> Block<R> {
                 self.ports[o].arrivals[input].add(k, a);
             }
         }
-        work
+        (work, folded)
     }
 
-    /// Port `o`'s deliveries due by `now` into `due` (`(born, jump)`); when
-    /// the next is due, and the work done.
+    /// Port `o`'s deliveries due by `now` into `due` (`(born, jump)`: the
+    /// lattice points' sums, then the exact fronts) and the folded jumps
+    /// on those points into [`Block::folded_due`]; when the next is due,
+    /// the work done, and how many of `due` are lattice points.
     pub(crate) fn due(
         &mut self,
         o: usize,
@@ -239,9 +298,14 @@ impl<R: Real> Block<R> {
     ) -> (Option<R>, u64, usize) {
         let mut work = 0;
         let h = self.ports[o].spacing;
-        let waiting = |port: &Port<R>| port.arrivals.iter().any(|a| !a.is_empty());
+        let waiting =
+            |port: &Port<R>| !port.folded.is_empty() || port.arrivals.iter().any(|a| !a.is_empty());
         while waiting(&self.ports[o]) && R::of(self.ports[o].next as f64) * h <= now {
             let m = self.ports[o].next;
+            let folded = self.ports[o].folded.take(m);
+            if folded != R::zero() {
+                self.folded_due.push((R::of(m as f64) * h, folded));
+            }
             let mut sum = R::zero();
             for (j, trace) in self.traces.iter_mut().enumerate() {
                 let arrivals = &mut self.ports[o].arrivals[j];
@@ -312,7 +376,7 @@ impl<R: Real> Block<R> {
         }
         for (o, port) in self.ports.iter().enumerate() {
             let exact = port.exact.iter().fold(R::zero(), |s, e| s + e.1.abs());
-            pending += exact * self.shape.port_speed[o];
+            pending += (exact + port.folded.total_abs()) * self.shape.port_speed[o];
         }
         pending
     }

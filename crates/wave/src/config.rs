@@ -168,6 +168,14 @@ pub struct WaveConfig {
     /// the trace's lattice points and rings out quickly between the
     /// block's slower layers. Off: the trace follows every front of it.
     pub nest_blocks: bool,
+    /// Put a block response's large fronts that their arrival scales
+    /// under what the neighbour's lane keeps apart (`keep_above`) on the
+    /// port's lattice as the arrival comes, split between two points as
+    /// the lane would deposit them (`block/folded.rs`): the lane receives
+    /// the same deposits, summed in another order, without each being
+    /// queued, delivered and spawned. Off: each is delivered at its time
+    /// and deposited by the lane.
+    pub fold_small_exact: bool,
     /// Step the bottom group between the wall's decisions (`group.rs`,
     /// merged runs with nothing recorded): two or more layers at the wall,
     /// each at least eight times faster than the layer above, followed in
@@ -210,6 +218,7 @@ impl Default for WaveConfig {
             leap_arrivals: LeapArrivals::Merged,
             fast_blocks: true,
             nest_blocks: true,
+            fold_small_exact: true,
             step_bottom_group: true,
         }
     }

@@ -220,6 +220,32 @@ impl<R: Real> Tracer<R> {
         jump: R,
         parents: &[u32],
     ) -> Result<(), WaveError> {
+        self.spawn_by(layer, dir, t, jump, parents, Lane::push)
+    }
+
+    /// [`Tracer::spawn`] deposited on a lattice lane whatever its size
+    /// ([`Lane::push_deposited`]).
+    pub(crate) fn spawn_deposited(
+        &mut self,
+        layer: usize,
+        dir: Direction,
+        t: R,
+        jump: R,
+    ) -> Result<(), WaveError> {
+        self.spawn_by(layer, dir, t, jump, &[], Lane::push_deposited)
+    }
+
+    /// [`Tracer::spawn`] with the lane's `push`.
+    #[inline(always)]
+    fn spawn_by(
+        &mut self,
+        layer: usize,
+        dir: Direction,
+        t: R,
+        jump: R,
+        parents: &[u32],
+        push: impl FnOnce(&mut Lane<R>, R, R, u32) -> Pushed<R>,
+    ) -> Result<(), WaveError> {
         if jump == R::zero() {
             return Ok(());
         }
@@ -234,7 +260,7 @@ impl<R: Real> Tracer<R> {
         let index = Lane::<R>::index(layer, dir);
         let id = self.next_id;
         let lane = &mut self.lanes[index];
-        match lane.push(t, jump, id) {
+        match push(lane, t, jump, id) {
             Pushed::New { was_empty } => {
                 if self.record.fronts {
                     let arrives = lane.arrival_of(t);

@@ -292,6 +292,20 @@ impl<R: Real> Lane<R> {
         }
     }
 
+    /// [`Lane::push`], but never kept apart on a lattice: deposited
+    /// whatever its size, as the many small fronts it stands for would
+    /// each have been (a block's folded deliveries, `block/folded.rs`).
+    pub fn push_deposited(&mut self, born: R, jump: R, id: u32) -> Pushed<R> {
+        match self.rule {
+            MergeRule::Simultaneous { window } => self.push_on_exact(born, jump, id, window),
+            MergeRule::Lattice {
+                spacing,
+                keep_above,
+                ..
+            } => self.push_on_lattice(born, jump, id, spacing, keep_above, 0),
+        }
+    }
+
     /// Keeps the (empty) lane's fronts in `room`, a vector another run
     /// grew ([`crate::room`]).
     pub(crate) fn move_into(&mut self, room: Vec<Front<R>>) {

@@ -677,10 +677,12 @@ fn a_contact_longer_than_the_event_limit_says_the_merged_run_stopped() {
     let msg = err.to_string();
     assert!(msg.contains("events per unit of time"), "{msg}");
     assert!(!msg.contains("--"), "a library names no flag: {msg}");
-    // stopped early in the contact, a mass on the soft layer's spring
+    // stopped early in the contact, a mass on the soft layer's spring (at
+    // 0.71 of its 22.4 time units since a response's small large fronts
+    // go on the lattice, `block/folded.rs`; at 0.14 before)
     let (soft, top) = (layers[3], layers[4]);
     let spring = soft.1 / soft.0;
     let contact = std::f64::consts::PI * (top.0 * top.2 / spring).sqrt();
     assert!((20.0..25.0).contains(&contact), "{contact}");
-    assert!(time < contact / 100.0, "{time} of a {contact} contact");
+    assert!(time < contact / 10.0, "{time} of a {contact} contact");
 }

@@ -20,8 +20,12 @@ const ADDS_PER_WORK: u64 = 256;
 impl<R: Real> Tracer<R> {
     /// The rod's blocks of fast layers (merged runs), with their layers and
     /// neighbours kept from leaping: the neighbours' lanes take the
-    /// blocks' deliveries, which a leap would not see coming.
-    pub(crate) fn find_blocks(&mut self, nest: bool) {
+    /// blocks' deliveries, which a leap would not see coming. `nest`: a
+    /// trace may answer its fastest layer by that layer's own response
+    /// (`response/nested.rs`); `fold`: a response's large fronts that an
+    /// arrival scales under what the neighbour's lane keeps apart go on
+    /// the port's lattice (`folded.rs`).
+    pub(crate) fn find_blocks(&mut self, nest: bool, fold: bool) {
         let nesting = if nest {
             super::Nesting::Allowed
         } else {
@@ -36,19 +40,22 @@ impl<R: Real> Tracer<R> {
             crate::lane::MergeRule::Lattice { spacing, .. } => spacing,
             crate::lane::MergeRule::Simultaneous { .. } => R::zero(),
         };
+        let keep_above = |m: usize, d: Direction| match self.lanes[Lane::<R>::index(m, d)].rule {
+            crate::lane::MergeRule::Lattice { keep_above, .. } => keep_above,
+            crate::lane::MergeRule::Simultaneous { .. } => R::zero(),
+        };
         let mut chosen = Vec::new();
         let mut list = Vec::new();
         let mut probed = 0;
         for run in super::candidates(&transits) {
             if super::apart(run, &chosen) && self.block_pays(&transits, run, nesting, &mut probed) {
                 chosen.push(run);
-                list.push(super::Block::new(
-                    &self.layers,
-                    &self.interfaces,
-                    run,
-                    &spacing,
-                    nesting,
-                ));
+                let mut block =
+                    super::Block::new(&self.layers, &self.interfaces, run, &spacing, nesting);
+                if fold {
+                    block.fold_below(&keep_above);
+                }
+                list.push(block);
             }
         }
         self.leap_work += probed * super::FRONT_ADDS / ADDS_PER_WORK;
@@ -120,8 +127,9 @@ impl<R: Real> Tracer<R> {
         };
         let mut late = std::mem::take(&mut self.blocks.late);
         late.clear();
-        let work = self.blocks.list[bi].arrive(input, t, d, &mut late);
+        let (work, folded) = self.blocks.list[bi].arrive(input, t, d, &mut late);
         self.leap_work += work / ADDS_PER_WORK;
+        self.drops.truncation.merged_fronts += folded;
         for &(o, born, jump) in &late {
             let (layer, dir) = self.blocks.list[bi].ports[o].out;
             self.spawn(layer, dir, born, jump, &[])?;
@@ -144,7 +152,8 @@ impl<R: Real> Tracer<R> {
         let mut due = std::mem::take(&mut self.blocks.spawns);
         due.clear();
         let block = &mut self.blocks.list[bi];
-        let (next, work, _) = block.due(o, self.now, &mut due);
+        let (next, work, on_lattice) = block.due(o, self.now, &mut due);
+        let mut folded = std::mem::take(&mut block.folded_due);
         let rest = block.take_rest();
         let (layer, dir) = block.ports[o].out;
         let key = EventKey::Layer(block.ports[o].key_layer as u32);
@@ -152,9 +161,20 @@ impl<R: Real> Tracer<R> {
         if let Some((velocity, force, force_time)) = rest {
             self.drop_rest(velocity, force, force_time);
         }
-        for &(born, jump) in due.iter() {
+        // the lattice points, what was folded on them (deposited on them
+        // after their sums, as the fronts it stands for were), the exact
+        // fronts
+        for &(born, jump) in &due[..on_lattice] {
             self.spawn(layer, dir, born, jump, &[])?;
         }
+        for &(born, jump) in &folded {
+            self.spawn_deposited(layer, dir, born, jump)?;
+        }
+        for &(born, jump) in &due[on_lattice..] {
+            self.spawn(layer, dir, born, jump, &[])?;
+        }
+        folded.clear();
+        self.blocks.list[bi].folded_due = folded;
         self.blocks.spawns = due;
         match next {
             Some(at) => self.queue.schedule(key, at, self.now).map_err(past),

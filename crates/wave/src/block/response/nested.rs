@@ -220,7 +220,7 @@ impl<R: Real> Trace<R> {
         late.clear();
         let mut work = 0;
         for &(at, d) in arrivals {
-            work += inner.block.arrive(input, at, d, &mut late);
+            work += inner.block.arrive(input, at, d, &mut late).0;
         }
         self.followed += work / FRONT_ADDS;
         for &(o, born, jump) in &late {

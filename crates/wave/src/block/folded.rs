@@ -1,0 +1,121 @@
+//! A port's responses' large fronts that are small once scaled by their
+//! arrival, put on the port's lattice at the arrival.
+//!
+//! A response's large fronts (`response.rs`) are kept apart so that they
+//! reach the neighbour at their exact times, as a lattice lane keeps its
+//! large fronts where they were born. But "large" is judged on a unit
+//! arrival: scaled by an arrival's jump (most arrivals are lattice points,
+//! small), nearly all of them fall under the neighbour lane's
+//! `keep_above`, and the lane deposits them on its lattice anyway. On the
+//! fast-bottom draw's rod 36 each arrival brought 16 of them, each sorted
+//! into the port's queue of exact fronts (84 long) and spawned one by one:
+//! 16 times the arrivals' own work. Such a front is put on the port's
+//! lattice when its arrival comes instead, split between its two points
+//! as the lane would split it (jump and first moment kept), and delivered
+//! with the lattice sums: the lane receives the same deposits, summed in
+//! another order.
+
+use crate::lane::Fifo;
+use crate::real::Real;
+
+/// Jumps added on a port's lattice points from `from` on, to be delivered
+/// with those points' sums.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Folded<R> {
+    from: i64,
+    jumps: Fifo<R>,
+}
+
+impl<R: Real> Folded<R> {
+    pub(crate) fn is_empty(&self) -> bool {
+        self.jumps.is_empty()
+    }
+
+    /// A jump born at `x` lattice spacings, split between its two points
+    /// as a lattice lane deposits it (`lane/lattice.rs`), if its earlier
+    /// point is `next` or later; false if that point has been delivered
+    /// (the jump is then left to its caller).
+    #[inline]
+    pub(crate) fn deposit(&mut self, x: R, jump: R, next: i64) -> bool {
+        let k = x.floor();
+        let f = x - k;
+        let k = k.to_f64() as i64;
+        if k < next {
+            return false;
+        }
+        if self.jumps.is_empty() {
+            self.from = k;
+        }
+        // (before the earliest held: a shorter delay after a longer one)
+        while k < self.from {
+            self.jumps.insert(0, R::zero());
+            self.from -= 1;
+        }
+        let i = usize::try_from(k - self.from).unwrap_or(0);
+        while self.jumps.len() <= i + 1 {
+            self.jumps.push_back(R::zero());
+        }
+        self.jumps[i] += jump * (R::one() - f);
+        self.jumps[i + 1] += jump * f;
+        true
+    }
+
+    /// What point `m` holds, taken; the points before it must have been
+    /// taken already.
+    pub(crate) fn take(&mut self, m: i64) -> R {
+        if self.jumps.is_empty() || m < self.from {
+            return R::zero();
+        }
+        debug_assert_eq!(m, self.from, "folded points taken in order");
+        self.from += 1;
+        self.jumps.pop_front().unwrap_or(R::zero())
+    }
+
+    /// `sum |jump|` over the points held.
+    pub(crate) fn total_abs(&self) -> R {
+        self.jumps.iter().fold(R::zero(), |s, &d| s + d.abs())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Folded;
+
+    /// A jump between two points keeps its jump and first moment about
+    /// the lattice (`sum a_k k h = jump * born`), and points come out in
+    /// order with what was added on each.
+    #[test]
+    fn a_deposit_keeps_the_jump_and_its_moment() {
+        let h = 0.25;
+        let mut folded = Folded::<f64>::default();
+        assert!(folded.deposit(1.3 / h, 2.0, 5));
+        assert!(folded.deposit(1.5 / h, -1.0, 5));
+        assert_eq!(folded.take(4), 0.0);
+        let taken: Vec<f64> = (5..9).map(|m| folded.take(m)).collect();
+        assert!(folded.is_empty());
+        let jump: f64 = taken.iter().sum();
+        let moment: f64 = taken.iter().zip(5..).map(|(a, k)| a * k as f64 * h).sum();
+        assert!((jump - 1.0).abs() < 1e-15, "{taken:?}");
+        assert!((moment - (2.0 * 1.3 - 1.5)).abs() < 1e-14, "{taken:?}");
+        // 1.5 sits on point 6: nothing on 7 from it
+        assert!((taken[1] - (2.0 * 0.2 - 1.0)).abs() < 1e-15, "{taken:?}");
+        assert_eq!(taken[2], 0.0, "{taken:?}");
+    }
+
+    /// A jump whose earlier point was delivered is refused and nothing is
+    /// held; one born before the earliest held point goes before it.
+    #[test]
+    fn a_delivered_point_is_refused() {
+        let mut folded = Folded::<f64>::default();
+        assert!(!folded.deposit(1.8, 1.0, 2));
+        assert!(folded.is_empty());
+        assert!(folded.deposit(4.0, 1.0, 2));
+        assert!(folded.deposit(2.0, 1.0, 2));
+        assert_eq!(folded.take(2), 1.0);
+        assert_eq!(folded.take(3), 0.0);
+        assert_eq!(folded.take(4), 1.0);
+        assert_eq!(folded.take(5), 0.0);
+        assert!(folded.is_empty());
+        assert_eq!(folded.total_abs(), 0.0);
+    }
+}
