@@ -249,26 +249,22 @@ impl<R: Real> Block<R> {
                 port.next = port.next.max(k);
             }
             // the large fronts at their exact times, or on the lattice
-            // where the lane would put them there (`|d jump|` under its
-            // `keep_above`)
-            let under = if d == R::zero() {
-                R::zero()
-            } else {
-                port.keep_above / d.abs()
-            };
+            // where the lane would put them there (under its `keep_above`,
+            // as the lane tests it)
             let x = t / h;
             debug_assert_eq!(
                 port.exact_per_input[input].len(),
                 self.traces[input].exact[o].len()
             );
             for &(delay, per_h, jump) in &port.exact_per_input[input] {
-                if jump.abs() < under && port.folded.deposit(x + per_h, d * jump, port.next) {
+                let jump = d * jump;
+                if jump.abs() < port.keep_above && port.folded.deposit(x + per_h, jump, port.next) {
                     folded += 1;
                     continue;
                 }
                 let at = t + delay;
                 let i = port.exact.partition_point(|e| e.0 <= at);
-                port.exact.insert(i, (at, d * jump));
+                port.exact.insert(i, (at, jump));
             }
             for (k, a) in [(k, d * (R::one() - f)), (k + 1, d * f)] {
                 if a == R::zero() {

@@ -161,9 +161,10 @@ impl<R: Real> Tracer<R> {
         if let Some((velocity, force, force_time)) = rest {
             self.drop_rest(velocity, force, force_time);
         }
-        // the lattice points, what was folded on them (deposited on them
-        // after their sums, as the fronts it stands for were), the exact
-        // fronts
+        // the lattice points, what was folded on them (deposited after
+        // their sums: a folded front's lower share came after its point's
+        // sum before too, its upper share before it, which matters only
+        // where that sum is kept apart), the exact fronts
         for &(born, jump) in &due[..on_lattice] {
             self.spawn(layer, dir, born, jump, &[])?;
         }
