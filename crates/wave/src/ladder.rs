@@ -1,14 +1,15 @@
 //! The merged ladder: lattices halved from a coarse start, each level set
-//! against the coarser ones and against a twin whose bottom is perturbed by
-//! `1e-12`, until the error bound meets the target or the work its budget
-//! (see `solve.rs` for when a run is merged, and `convergence.rs` for what
-//! the levels' differences say).
+//! against the coarser ones and against its perturbed twins (`twins.rs`),
+//! until the error bound meets the target or the work its budget (see
+//! `solve.rs` for when a run is merged, and `convergence.rs` for what the
+//! levels' differences say).
 
-use crate::config::{COARSEST, Precision, Resolution, WaveConfig};
+use crate::config::{COARSEST, WaveConfig};
 use crate::convergence::{LOOK_BACK, SLOWEST_ORDER, converging, observed_order, refinement_error};
 use crate::engine::WaveEngine;
 use crate::error::WaveError;
 use crate::solve::{LadderProgress, run};
+use crate::twins::{self, NUDGES, merged_at, needs_further, nudged};
 use impact_model::Rod;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -50,31 +51,13 @@ pub(crate) fn lattice_spacing(
 /// Levels a ladder needs before its estimate is trusted: two comparisons.
 const MIN_LEVELS: usize = 3;
 
-/// The rod with its bottom layer's modulus changed by `1e-12`: rods that
-/// chatter for hundreds of bounces amplify any perturbation, a merge among
-/// them, chaotically (a steel base under rubber moves `e` by `1e-4`), and
-/// the twin's difference measures that.
-fn nudged(rod: &Rod) -> Rod {
-    let mut scene = rod.scene().clone();
-    scene.layers[0].modulus *= 1.0 + 1e-12;
-    scene.validate().unwrap_or_else(|_| rod.clone())
-}
-
-fn merged_at(config: &WaveConfig, p: f64, l: f64, max_events: u64) -> WaveConfig {
-    WaveConfig {
-        resolution: Resolution::Merged {
-            per_transit: p,
-            per_longest: l,
-        },
-        precision: Precision::Double,
-        max_events: max_events.min(config.max_events),
-        ..config.clone()
-    }
-}
-
-/// The bound of the reported level and how it was found.
-fn merge_check(levels: &[f64], perturbed: f64, p: f64, l: f64, used: u64) -> MergeCheck {
+/// The bound of a level and how it was found, from the levels' `e`
+/// (coarsest first, this one last) and its twins' (`e` of the rod nudged
+/// by [`NUDGES`] in order; none for a level run without its twin).
+fn merge_check(levels: &[f64], twins: &[f64], p: f64, l: f64, used: u64) -> MergeCheck {
+    let fine = levels.last().copied().unwrap_or(0.0);
     let refined = refinement_error(levels);
+    let perturbed = twins.iter().map(|t| (t - fine).abs()).fold(0.0, f64::max);
     let order = observed_order(levels);
     let converging = converging(levels);
     let seen = match (order, converging) {
@@ -85,6 +68,22 @@ fn merge_check(levels: &[f64], perturbed: f64, p: f64, l: f64, used: u64) -> Mer
         ),
         (None, false) => "; no convergence is seen (fewer than three levels, or e moved after standing still): the estimate may be low".to_string(),
     };
+    let chaos = match twins {
+        [_] => {
+            format!("the difference from the bottom's modulus changed by 1e-12 ({perturbed:.1e})")
+        }
+        [first, ..] => format!(
+            "the largest difference over {} twins, the bottom's modulus changed by {} ({perturbed:.1e}; the first twin's, {:.1e}, said contacts flip on a nudge)",
+            twins.len(),
+            NUDGES[..twins.len()]
+                .iter()
+                .map(|n| format!("{n:+.0e}"))
+                .collect::<Vec<_>>()
+                .join(", "),
+            (first - fine).abs(),
+        ),
+        [] => "no twin (not run at this level)".to_string(),
+    };
     MergeCheck {
         per_transit: p,
         per_longest: l,
@@ -92,15 +91,44 @@ fn merge_check(levels: &[f64], perturbed: f64, p: f64, l: f64, used: u64) -> Mer
         order,
         converging,
         method: format!(
-            "merged: twice the larger of the refinement estimate ({refined:.1e}: the largest |e - e(2^j as coarse)| / (2^j - 1) over {} coarser lattices) and the difference from the bottom's modulus changed by 1e-12 ({perturbed:.1e}); lattice spacings {p:.3e} of each transit, {l:.1e} of the longest ({used} units of work in all: loop iterations, and the fronts and lattice cells of leaps){seen}",
+            "merged: twice the larger of the refinement estimate ({refined:.1e}: the largest |e - e(2^j as coarse)| / (2^j - 1) over {} coarser lattices) and {chaos}; lattice spacings {p:.3e} of each transit, {l:.1e} of the longest ({used} units of work in all: loop iterations, and the fronts and lattice cells of leaps){seen}",
             (levels.len() - 1).min(LOOK_BACK),
         ),
     }
 }
 
+/// The check of the level reported: as [`merge_check`], with the further
+/// twins run first where its one twin says they may decide the bound (see
+/// [`needs_further`]).
+fn reported_check(
+    rod: &Rod,
+    config: &WaveConfig,
+    max: u64,
+    levels: &[f64],
+    twin: f64,
+    (p, l): (f64, f64),
+    used: u64,
+) -> Result<MergeCheck, WaveError> {
+    let fine = levels.last().copied().unwrap_or(0.0);
+    if !needs_further((twin - fine).abs(), refinement_error(levels)) {
+        return Ok(merge_check(levels, &[twin], p, l, used));
+    }
+    let (further, work) = twins::further(rod, config, (p, l), max)?;
+    let unfinished = NUDGES.len() - 1 - further.len();
+    let all: Vec<f64> = std::iter::once(twin).chain(further).collect();
+    let mut check = merge_check(levels, &all, p, l, used + work);
+    if unfinished > 0 {
+        check.method.push_str(&format!(
+            "; {unfinished} further twin(s) did not finish within {max} events and are left out"
+        ));
+    }
+    Ok(check)
+}
+
 /// A merged run on the given lattice, checked against the lattices 2, 4,
 /// 8 and 16 times as coarse (those within [`COARSEST`]) and a perturbed
-/// twin, all run side by side.
+/// twin, all run side by side (and the further twins after them, if the
+/// twin says so).
 pub(crate) fn fixed_lattice(
     rod: &Rod,
     config: &WaveConfig,
@@ -108,7 +136,7 @@ pub(crate) fn fixed_lattice(
     l: f64,
 ) -> Result<(WaveEngine, MergeCheck), WaveError> {
     use rayon::prelude::*;
-    let twin_rod = nudged(rod);
+    let twin_rod = nudged(rod, NUDGES[0]);
     let coarser: Vec<f64> = (1..=LOOK_BACK as i32)
         .map(|j| 2f64.powi(j))
         .filter(|f| f * p <= COARSEST)
@@ -138,8 +166,7 @@ pub(crate) fn fixed_lattice(
     let used = fine.steps() + twin.steps() + coarse.iter().map(|c| c.1).sum::<u64>();
     let mut levels: Vec<f64> = coarse.iter().map(|c| c.0).collect();
     levels.push(fine.restitution());
-    let perturbed = (fine.restitution() - twin.restitution()).abs();
-    let check = merge_check(&levels, perturbed, p, l, used);
+    let check = reported_check(rod, config, max, &levels, twin.restitution(), (p, l), used)?;
     Ok((fine, check))
 }
 
@@ -165,7 +192,7 @@ pub(crate) fn ladder(
     target: f64,
     observe: &dyn Fn(LadderProgress),
 ) -> Result<(WaveEngine, MergeCheck), WaveError> {
-    let twin_rod = nudged(rod);
+    let twin_rod = nudged(rod, NUDGES[0]);
     let max = config.max_events;
     let (p0, l0) = LADDER_START;
     let (p1, l1) = (p0 / 2.0, l0 / 2.0);
@@ -217,26 +244,24 @@ pub(crate) fn ladder(
     } else {
         None
     };
-    let perturbed = twin
-        .as_ref()
-        .map_or(0.0, |t| (second.restitution() - t.restitution()).abs());
+    let twin = twin.map(|t| t.restitution());
     observe(LadderProgress::LevelDone {
         level: 2,
         per_transit: p1,
         restitution: second.restitution(),
-        bound: merge_check(&levels, perturbed, p1, l1, used).bound,
+        bound: merge_check(&levels, twin.as_slice(), p1, l1, used).bound,
         work: used,
     });
     let reported = too_long(&second).then(|| past_the_limit(2 * second.steps(), max, 2));
-    let second = Coarser::Twinless {
+    let second = Coarser {
         engine: second,
-        twin: twin.map(Box::new),
+        twin,
         levels: levels.clone(),
         lattice: (p1, l1),
         used,
     };
     if let Some(note) = reported {
-        return second.checked(&twin_rod, config, max, &note);
+        return second.checked(rod, config, max, &note);
     }
     let mut coarser = second;
     let (mut p, mut l) = (p1 / 2.0, l1 / 2.0);
@@ -255,14 +280,13 @@ pub(crate) fn ladder(
                     "; the next level did not finish within {max} events, so the estimate rests on {} levels",
                     levels.len()
                 );
-                return coarser.checked(&twin_rod, config, max, &note);
+                return coarser.checked(rod, config, max, &note);
             }
             (Err(e), _) | (_, Err(e)) => return Err(e),
         };
         used += fine.steps() + twin.steps();
         levels.push(fine.restitution());
-        let perturbed = (fine.restitution() - twin.restitution()).abs();
-        let check = merge_check(&levels, perturbed, p, l, used);
+        let check = merge_check(&levels, &[twin.restitution()], p, l, used);
         observe(LadderProgress::LevelDone {
             level: levels.len(),
             per_transit: p,
@@ -273,17 +297,21 @@ pub(crate) fn ladder(
         // events about double with each halving
         let next_cost = 2 * (fine.steps() + twin.steps());
         let done = check.bound <= target || used + next_cost > budget || p / 2.0 < FINEST;
+        let level = Coarser {
+            engine: fine,
+            twin: Some(twin.restitution()),
+            levels: levels.clone(),
+            lattice: (p, l),
+            used,
+        };
         if done {
-            return Ok((fine, check));
+            return level.checked(rod, config, max, "");
         }
-        if too_long(&fine) {
-            let mut check = check;
-            check
-                .method
-                .push_str(&past_the_limit(2 * fine.steps(), max, levels.len()));
-            return Ok((fine, check));
+        if too_long(&level.engine) {
+            let note = past_the_limit(2 * level.engine.steps(), max, levels.len());
+            return level.checked(rod, config, max, &note);
         }
-        coarser = Coarser::Checked(fine, check);
+        coarser = level;
         p /= 2.0;
         l /= 2.0;
     }
@@ -298,52 +326,40 @@ fn past_the_limit(next_run: u64, max: u64, levels: usize) -> String {
 }
 
 /// The finest level a ladder has finished, kept in case the next cannot
-/// finish: checked against its twin already, or not yet (the levels that
-/// ran side by side before the [`MIN_LEVELS`]-th).
-enum Coarser {
-    Checked(WaveEngine, MergeCheck),
-    Twinless {
-        engine: WaveEngine,
-        /// Its twin, if it was run beside it.
-        twin: Option<Box<WaveEngine>>,
-        /// `e` of the levels up to this one, coarsest first.
-        levels: Vec<f64>,
-        lattice: (f64, f64),
-        used: u64,
-    },
+/// finish, with its twin's `e` if that was run beside it (not for the
+/// levels that ran side by side before the [`MIN_LEVELS`]-th).
+struct Coarser {
+    engine: WaveEngine,
+    twin: Option<f64>,
+    /// `e` of the levels up to this one, coarsest first.
+    levels: Vec<f64>,
+    lattice: (f64, f64),
+    used: u64,
 }
 
 impl Coarser {
     /// The level reported, its check completed by its twin if it has none
-    /// yet, and `note` (why the ladder stopped) added to its method.
+    /// yet (and by its further twins where that says so), and `note` (why
+    /// the ladder stopped) added to its method.
     fn checked(
         self,
-        twin_rod: &Rod,
+        rod: &Rod,
         config: &WaveConfig,
         max: u64,
         note: &str,
     ) -> Result<(WaveEngine, MergeCheck), WaveError> {
-        let (engine, mut check) = match self {
-            Coarser::Checked(engine, check) => (engine, check),
-            Coarser::Twinless {
-                engine,
-                twin,
-                levels,
-                lattice: (p, l),
-                used,
-            } => {
-                let twin = match twin {
-                    Some(twin) => *twin,
-                    None => run::<f64>(twin_rod, merged_at(config, p, l, max))
-                        .map_err(|e| e.on_lattice(p))?,
-                };
-                let perturbed = (engine.restitution() - twin.restitution()).abs();
-                let check = merge_check(&levels, perturbed, p, l, used + twin.steps());
-                (engine, check)
+        let (p, l) = self.lattice;
+        let (twin, used) = match self.twin {
+            Some(twin) => (twin, self.used),
+            None => {
+                let twin = run::<f64>(&nudged(rod, NUDGES[0]), merged_at(config, p, l, max))
+                    .map_err(|e| e.on_lattice(p))?;
+                (twin.restitution(), self.used + twin.steps())
             }
         };
+        let mut check = reported_check(rod, config, max, &self.levels, twin, (p, l), used)?;
         check.method.push_str(note);
-        Ok((engine, check))
+        Ok((self.engine, check))
     }
 }
 

@@ -35,6 +35,7 @@ mod runs;
 mod solve;
 #[cfg(test)]
 mod test_random;
+mod twins;
 mod wall;
 mod window;
 
