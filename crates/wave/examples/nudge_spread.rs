@@ -7,11 +7,16 @@ use rayon::prelude::*;
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
+    if args.len() != 5 {
+        eprintln!("usage: nudge_spread SCENE.json PER_TRANSIT PER_LONGEST K (K >= 1)");
+        std::process::exit(2);
+    }
     let text = std::fs::read_to_string(&args[1]).expect("a scene file");
     let scene: Scene = serde_json::from_str(&text).expect("a scene");
     let p: f64 = args[2].parse().expect("PER_TRANSIT");
     let l: f64 = args[3].parse().expect("PER_LONGEST");
     let k: i32 = args[4].parse().expect("K");
+    assert!(k >= 1, "K >= 1: a spread needs two runs");
     let config = WaveConfig {
         resolution: Resolution::Merged {
             per_transit: p,

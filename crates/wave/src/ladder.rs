@@ -9,7 +9,7 @@ use crate::convergence::{LOOK_BACK, SLOWEST_ORDER, converging, observed_order, r
 use crate::engine::WaveEngine;
 use crate::error::WaveError;
 use crate::solve::{LadderProgress, run};
-use crate::twins::{self, NUDGES, merged_at, needs_further, nudged};
+use crate::twins::{NUDGES, further_twins, merged_at, needs_further, nudged};
 use impact_model::Rod;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -52,12 +52,22 @@ pub(crate) fn lattice_spacing(
 const MIN_LEVELS: usize = 3;
 
 /// The bound of a level and how it was found, from the levels' `e`
-/// (coarsest first, this one last) and its twins' (`e` of the rod nudged
-/// by [`NUDGES`] in order; none for a level run without its twin).
-fn merge_check(levels: &[f64], twins: &[f64], p: f64, l: f64, used: u64) -> MergeCheck {
+/// (coarsest first, this one last) and its twins' (each its nudge of the
+/// bottom's modulus and its `e`, the first nudged by `NUDGES[0]`; none
+/// for a level run without its twin).
+fn merge_check(
+    levels: &[f64],
+    nudged_runs: &[(f64, f64)],
+    p: f64,
+    l: f64,
+    used: u64,
+) -> MergeCheck {
     let fine = levels.last().copied().unwrap_or(0.0);
     let refined = refinement_error(levels);
-    let perturbed = twins.iter().map(|t| (t - fine).abs()).fold(0.0, f64::max);
+    let perturbed = nudged_runs
+        .iter()
+        .map(|(_, e)| (e - fine).abs())
+        .fold(0.0, f64::max);
     let order = observed_order(levels);
     let converging = converging(levels);
     let seen = match (order, converging) {
@@ -68,16 +78,16 @@ fn merge_check(levels: &[f64], twins: &[f64], p: f64, l: f64, used: u64) -> Merg
         ),
         (None, false) => "; no convergence is seen (fewer than three levels, or e moved after standing still): the estimate may be low".to_string(),
     };
-    let chaos = match twins {
+    let chaos = match nudged_runs {
         [_] => {
             format!("the difference from the bottom's modulus changed by 1e-12 ({perturbed:.1e})")
         }
-        [first, ..] => format!(
+        [(_, first), ..] => format!(
             "the largest difference over {} twins, the bottom's modulus changed by {} ({perturbed:.1e}; the first twin's, {:.1e}, said contacts flip on a nudge)",
-            twins.len(),
-            NUDGES[..twins.len()]
+            nudged_runs.len(),
+            nudged_runs
                 .iter()
-                .map(|n| format!("{n:+.0e}"))
+                .map(|(nudge, _)| format!("{nudge:+.0e}"))
                 .collect::<Vec<_>>()
                 .join(", "),
             (first - fine).abs(),
@@ -110,16 +120,17 @@ fn reported_check(
     used: u64,
 ) -> Result<MergeCheck, WaveError> {
     let fine = levels.last().copied().unwrap_or(0.0);
+    let first = (NUDGES[0], twin);
     if !needs_further((twin - fine).abs(), refinement_error(levels)) {
-        return Ok(merge_check(levels, &[twin], p, l, used));
+        return Ok(merge_check(levels, &[first], p, l, used));
     }
-    let (further, work) = twins::further(rod, config, (p, l), max)?;
+    let (further, work) = further_twins(rod, config, (p, l), max)?;
     let unfinished = NUDGES.len() - 1 - further.len();
-    let all: Vec<f64> = std::iter::once(twin).chain(further).collect();
+    let all: Vec<(f64, f64)> = std::iter::once(first).chain(further).collect();
     let mut check = merge_check(levels, &all, p, l, used + work);
     if unfinished > 0 {
         check.method.push_str(&format!(
-            "; {unfinished} further twin(s) did not finish within {max} events and are left out"
+            "; {unfinished} further twin(s) did not finish within {max} events or the time limit and are left out"
         ));
     }
     Ok(check)
@@ -177,7 +188,11 @@ pub(crate) fn fixed_lattice(
 /// (a scene finishes once two levels fit `max_events`; if they do not,
 /// [`WaveError::LatticeLimit`]). The finest level is reported; if a level cannot
 /// finish within `max_events`, the finest before it is, with what its
-/// comparisons say (two levels at least).
+/// comparisons say (two levels at least). Whether to stop is judged on a
+/// level's one twin; the level reported then runs its further twins where
+/// that twin says so ([`reported_check`]), which may raise its bound past
+/// `target` and its work past `budget`: a chaotic rod's spread does not
+/// shrink with the lattice.
 ///
 /// The first two levels (of the [`MIN_LEVELS`] = 3 every ladder runs)
 /// cannot end it, so they run side by side, without the first's twin (a
@@ -244,21 +259,23 @@ pub(crate) fn ladder(
     } else {
         None
     };
-    let twin = twin.map(|t| t.restitution());
+    let twin = twin.map(|t| (t.restitution(), t.steps()));
+    let nudged_runs: Vec<(f64, f64)> = twin.iter().map(|&(e, _)| (NUDGES[0], e)).collect();
     observe(LadderProgress::LevelDone {
         level: 2,
         per_transit: p1,
         restitution: second.restitution(),
-        bound: merge_check(&levels, twin.as_slice(), p1, l1, used).bound,
+        bound: merge_check(&levels, &nudged_runs, p1, l1, used).bound,
         work: used,
     });
     let reported = too_long(&second).then(|| past_the_limit(2 * second.steps(), max, 2));
     let second = Coarser {
         engine: second,
-        twin,
+        twin: twin.map(|(e, _)| e),
         levels: levels.clone(),
         lattice: (p1, l1),
-        used,
+        // the twin's work is counted where it is used, if it was run
+        used: used + twin.map_or(0, |(_, steps)| steps),
     };
     if let Some(note) = reported {
         return second.checked(rod, config, max, &note);
@@ -286,7 +303,7 @@ pub(crate) fn ladder(
         };
         used += fine.steps() + twin.steps();
         levels.push(fine.restitution());
-        let check = merge_check(&levels, &[twin.restitution()], p, l, used);
+        let check = merge_check(&levels, &[(NUDGES[0], twin.restitution())], p, l, used);
         observe(LadderProgress::LevelDone {
             level: levels.len(),
             per_transit: p,
@@ -326,14 +343,15 @@ fn past_the_limit(next_run: u64, max: u64, levels: usize) -> String {
 }
 
 /// The finest level a ladder has finished, kept in case the next cannot
-/// finish, with its twin's `e` if that was run beside it (not for the
-/// levels that ran side by side before the [`MIN_LEVELS`]-th).
+/// finish, with its twin's `e` if that was run beside it (not always for
+/// the levels that ran side by side before the [`MIN_LEVELS`]-th).
 struct Coarser {
     engine: WaveEngine,
     twin: Option<f64>,
     /// `e` of the levels up to this one, coarsest first.
     levels: Vec<f64>,
     lattice: (f64, f64),
+    /// Work so far, the twin's included if it was run.
     used: u64,
 }
 

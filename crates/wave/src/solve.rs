@@ -16,7 +16,8 @@
 //!   and against a run with the bottom layer's modulus changed by `1e-12`
 //!   (rods that chatter for hundreds of bounces amplify any perturbation, a
 //!   merge among them, chaotically: a steel base under rubber moves `e` by
-//!   `1e-4` for that change). Twice the larger estimate is reported. Levels
+//!   `1e-4` for that change), or three such runs where the first shows
+//!   contacts flipping (`twins.rs`). Twice the larger estimate is reported. Levels
 //!   halve the spacings until the estimate meets the target or the event
 //!   budget is spent; the finest is reported.
 //! - Tolerances: an exact run that combined arrivals more than rounding

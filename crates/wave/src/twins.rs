@@ -37,12 +37,12 @@ const AMPLIFIED: f64 = 1e-10;
 /// How far one twin's difference may fall below the spread of many: on
 /// the two chattering rods measured (see the module's doc), one twin's
 /// difference was under a thirtieth of the largest over the other 24 runs
-/// for 4 % (rod 33) and 6 % (rod 5) of the pairs.
+/// for 4 % (seed 3's rod 33) and 6 % (seed 3's rod 5) of the pairs.
 const ONE_SAMPLE_LOW: f64 = 30.0;
 
 /// The rod with its bottom layer's modulus changed by `nudge`, relative
-/// (the rod itself if that is not a valid scene, which a nudge of `1e-12`
-/// cannot make of a valid one).
+/// (the rod itself if that is not a valid scene, which a nudge of a few
+/// `1e-12` cannot make of a valid one).
 pub(crate) fn nudged(rod: &Rod, nudge: f64) -> Rod {
     let mut scene = rod.scene().clone();
     scene.layers[0].modulus *= 1.0 + nudge;
@@ -70,32 +70,33 @@ pub(crate) fn merged_at(config: &WaveConfig, p: f64, l: f64, max_events: u64) ->
     }
 }
 
-/// The further twins' `e` on the lattice `(p, l)`, side by side, and the
-/// work they took; a twin that does not finish within `max_events` (its
-/// contacts went another way) is left out, and the caller says so.
-pub(crate) fn further(
+/// The further twins on the lattice `(p, l)`, side by side: each one's
+/// nudge and `e`, and the work they took. A twin that does not finish
+/// within `max_events` or the time limit (its contacts went another way)
+/// is left out, and the caller says so; its work is not counted.
+pub(crate) fn further_twins(
     rod: &Rod,
     config: &WaveConfig,
     (p, l): (f64, f64),
     max: u64,
-) -> Result<(Vec<f64>, u64), WaveError> {
+) -> Result<(Vec<(f64, f64)>, u64), WaveError> {
     use rayon::prelude::*;
-    let runs: Vec<Result<(f64, u64), WaveError>> = NUDGES[1..]
+    let runs: Vec<Result<(f64, f64, u64), WaveError>> = NUDGES[1..]
         .par_iter()
         .map(|&nudge| {
             run::<f64>(&nudged(rod, nudge), merged_at(config, p, l, max))
-                .map(|twin| (twin.restitution(), twin.steps()))
+                .map(|twin| (nudge, twin.restitution(), twin.steps()))
         })
         .collect();
     let mut twins = Vec::new();
     let mut work = 0;
     for run in runs {
         match run {
-            Ok((e, steps)) => {
-                twins.push(e);
+            Ok((nudge, e, steps)) => {
+                twins.push((nudge, e));
                 work += steps;
             }
-            Err(WaveError::EventLimit { .. }) => {}
+            Err(WaveError::EventLimit { .. } | WaveError::TimeLimit { .. }) => {}
             Err(e) => return Err(e.on_lattice(p)),
         }
     }

@@ -361,6 +361,15 @@ fn a_ladder_cut_short_by_max_events_reports_what_finished() {
         "{method}"
     );
     assert!(method.contains("rests on 2 levels"), "{method}");
+    // the work counted: both levels and the second's twin, run alone
+    let mut scene = rod.scene().clone();
+    scene.layers[0].modulus *= 1.0 + 1e-12;
+    let twin = ladder_level(&scene.validate().unwrap(), 1).1;
+    let work = ladder_level(&rod, 0).1 + second + twin;
+    assert!(
+        method.contains(&format!("({work} units of work in all")),
+        "{work}: {method}"
+    );
     let (bound, full_bound) = (short.error_bound.unwrap(), full.error_bound.unwrap());
     assert!(bound > full_bound, "{bound:e} {full_bound:e}");
     let d = (short.restitution - full.restitution).abs();
@@ -561,6 +570,12 @@ fn a_ladder_reports_what_its_levels_run_alone_give() {
     let twin = alone(&scene.validate().unwrap(), levels.len() - 1);
     let bound = 2.0 * refined.max((finest - twin).abs());
     assert_eq!(outcome.error_estimate.as_ref().unwrap().merged, bound);
+    // a rod that does not chatter keeps its one twin (`twins.rs`)
+    let method = &outcome.error_estimate.as_ref().unwrap().method;
+    assert!(
+        method.contains("the difference from the bottom's modulus changed by 1e-12"),
+        "{method}"
+    );
     // the same on one thread, where the levels run one after the other
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
