@@ -122,7 +122,7 @@ impl LadderSpinner {
 
     /// Shows what the ladder reports.
     pub fn show(&self, progress: impact_wave::LadderProgress) {
-        use impact_wave::LadderProgress::{LadderStarted, LevelDone};
+        use impact_wave::LadderProgress::{FurtherTwins, LadderStarted, LevelDone};
         if !std::io::stderr().is_terminal() {
             return;
         }
@@ -154,6 +154,16 @@ impl LadderSpinner {
                     };
                     bar.set_message(format!(
                         "merged level {level} done (lattice {per_transit:.3} of each transit): e = {restitution:.8}, {bound}, {work} units of work"
+                    ));
+                }
+            }
+            FurtherTwins {
+                level,
+                first_difference,
+            } => {
+                if let Some(bar) = self.bar.get() {
+                    bar.set_message(format!(
+                        "merged level {level}: its twin with a 1e-12 stiffer bottom differs by {first_difference:.1e}, so contacts flip on a nudge: two more twins measure how far"
                     ));
                 }
             }

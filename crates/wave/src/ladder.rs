@@ -107,35 +107,6 @@ fn merge_check(
     }
 }
 
-/// The check of the level reported: as [`merge_check`], with the further
-/// twins run first where its one twin says they may decide the bound (see
-/// [`needs_further`]).
-fn reported_check(
-    rod: &Rod,
-    config: &WaveConfig,
-    max: u64,
-    levels: &[f64],
-    twin: f64,
-    (p, l): (f64, f64),
-    used: u64,
-) -> Result<MergeCheck, WaveError> {
-    let fine = levels.last().copied().unwrap_or(0.0);
-    let first = (NUDGES[0], twin);
-    if !needs_further((twin - fine).abs(), refinement_error(levels)) {
-        return Ok(merge_check(levels, &[first], p, l, used));
-    }
-    let (further, work) = further_twins(rod, config, (p, l), max)?;
-    let unfinished = NUDGES.len() - 1 - further.len();
-    let all: Vec<(f64, f64)> = std::iter::once(first).chain(further).collect();
-    let mut check = merge_check(levels, &all, p, l, used + work);
-    if unfinished > 0 {
-        check.method.push_str(&format!(
-            "; {unfinished} further twin(s) did not finish within {max} events or the time limit and are left out"
-        ));
-    }
-    Ok(check)
-}
-
 /// A merged run on the given lattice, checked against the lattices 2, 4,
 /// 8 and 16 times as coarse (those within [`COARSEST`]) and a perturbed
 /// twin, all run side by side (and the further twins after them, if the
@@ -177,8 +148,14 @@ pub(crate) fn fixed_lattice(
     let used = fine.steps() + twin.steps() + coarse.iter().map(|c| c.1).sum::<u64>();
     let mut levels: Vec<f64> = coarse.iter().map(|c| c.0).collect();
     levels.push(fine.restitution());
-    let check = reported_check(rod, config, max, &levels, twin.restitution(), (p, l), used)?;
-    Ok((fine, check))
+    let level = Level {
+        engine: fine,
+        twin: Some(twin.restitution()),
+        levels,
+        lattice: (p, l),
+        used,
+    };
+    level.checked(rod, config, max, "", &|_| {})
 }
 
 /// Merged runs from [`LADDER_START`] down by halves, each with its
@@ -190,7 +167,7 @@ pub(crate) fn fixed_lattice(
 /// finish within `max_events`, the finest before it is, with what its
 /// comparisons say (two levels at least). Whether to stop is judged on a
 /// level's one twin; the level reported then runs its further twins where
-/// that twin says so ([`reported_check`]), which may raise its bound past
+/// that twin says so ([`Level::checked`]), which may raise its bound past
 /// `target` and its work past `budget`: a chaotic rod's spread does not
 /// shrink with the lattice.
 ///
@@ -269,7 +246,7 @@ pub(crate) fn ladder(
         work: used,
     });
     let reported = too_long(&second).then(|| past_the_limit(2 * second.steps(), max, 2));
-    let second = Coarser {
+    let second = Level {
         engine: second,
         twin: twin.map(|(e, _)| e),
         levels: levels.clone(),
@@ -278,7 +255,7 @@ pub(crate) fn ladder(
         used: used + twin.map_or(0, |(_, steps)| steps),
     };
     if let Some(note) = reported {
-        return second.checked(rod, config, max, &note);
+        return second.checked(rod, config, max, &note, observe);
     }
     let mut coarser = second;
     let (mut p, mut l) = (p1 / 2.0, l1 / 2.0);
@@ -297,7 +274,7 @@ pub(crate) fn ladder(
                     "; the next level did not finish within {max} events, so the estimate rests on {} levels",
                     levels.len()
                 );
-                return coarser.checked(rod, config, max, &note);
+                return coarser.checked(rod, config, max, &note, observe);
             }
             (Err(e), _) | (_, Err(e)) => return Err(e),
         };
@@ -314,7 +291,7 @@ pub(crate) fn ladder(
         // events about double with each halving
         let next_cost = 2 * (fine.steps() + twin.steps());
         let done = check.bound <= target || used + next_cost > budget || p / 2.0 < FINEST;
-        let level = Coarser {
+        let level = Level {
             engine: fine,
             twin: Some(twin.restitution()),
             levels: levels.clone(),
@@ -322,11 +299,11 @@ pub(crate) fn ladder(
             used,
         };
         if done {
-            return level.checked(rod, config, max, "");
+            return level.checked(rod, config, max, "", observe);
         }
         if too_long(&level.engine) {
             let note = past_the_limit(2 * level.engine.steps(), max, levels.len());
-            return level.checked(rod, config, max, &note);
+            return level.checked(rod, config, max, &note, observe);
         }
         coarser = level;
         p /= 2.0;
@@ -342,10 +319,11 @@ fn past_the_limit(next_run: u64, max: u64, levels: usize) -> String {
     )
 }
 
-/// The finest level a ladder has finished, kept in case the next cannot
-/// finish, with its twin's `e` if that was run beside it (not always for
-/// the levels that ran side by side before the [`MIN_LEVELS`]-th).
-struct Coarser {
+/// A level that finished, with what its check needs: the ladder keeps the
+/// finest in case the next cannot finish. Its twin's `e` is there if that
+/// was run beside it (not always for the levels that ran side by side
+/// before the [`MIN_LEVELS`]-th).
+struct Level {
     engine: WaveEngine,
     twin: Option<f64>,
     /// `e` of the levels up to this one, coarsest first.
@@ -355,19 +333,21 @@ struct Coarser {
     used: u64,
 }
 
-impl Coarser {
-    /// The level reported, its check completed by its twin if it has none
-    /// yet (and by its further twins where that says so), and `note` (why
-    /// the ladder stopped) added to its method.
+impl Level {
+    /// The level as reported: its check completed by its twin if it has
+    /// none yet, and by the further twins where that twin says they may
+    /// decide the bound (see [`needs_further`]; `observe` is told before
+    /// they run), and `note` (why the ladder stopped) added to its method.
     fn checked(
         self,
         rod: &Rod,
         config: &WaveConfig,
         max: u64,
         note: &str,
+        observe: &dyn Fn(LadderProgress),
     ) -> Result<(WaveEngine, MergeCheck), WaveError> {
         let (p, l) = self.lattice;
-        let (twin, used) = match self.twin {
+        let (twin, mut used) = match self.twin {
             Some(twin) => (twin, self.used),
             None => {
                 let twin = run::<f64>(&nudged(rod, NUDGES[0]), merged_at(config, p, l, max))
@@ -375,7 +355,26 @@ impl Coarser {
                 (twin.restitution(), self.used + twin.steps())
             }
         };
-        let mut check = reported_check(rod, config, max, &self.levels, twin, (p, l), used)?;
+        let levels = &self.levels;
+        let fine = self.engine.restitution();
+        let mut runs = vec![(NUDGES[0], twin)];
+        let mut unfinished = 0;
+        if needs_further((twin - fine).abs(), refinement_error(levels)) {
+            observe(LadderProgress::FurtherTwins {
+                level: levels.len(),
+                first_difference: (twin - fine).abs(),
+            });
+            let (further, work) = further_twins(rod, config, (p, l), max)?;
+            unfinished = NUDGES.len() - runs.len() - further.len();
+            runs.extend(further);
+            used += work;
+        }
+        let mut check = merge_check(levels, &runs, p, l, used);
+        if unfinished > 0 {
+            check.method.push_str(&format!(
+                "; {unfinished} further twin(s) did not finish within {max} events or the time limit and are left out"
+            ));
+        }
         check.method.push_str(note);
         Ok((self.engine, check))
     }

@@ -92,6 +92,15 @@ pub enum LadderProgress {
         /// Work done so far (loop iterations, and leaps' fronts and cells).
         work: u64,
     },
+    /// The level reported differs from its twin (the bottom's modulus
+    /// `1e-12` stiffer) by so much that contacts flip on a nudge: two more
+    /// twins run before the bound is set (a level's run more).
+    FurtherTwins {
+        /// The level reported, 1 for the coarsest.
+        level: usize,
+        /// `|e - e(twin)|`.
+        first_difference: f64,
+    },
 }
 
 /// [`simulate`], keeping the engine of the reported run.

@@ -58,14 +58,23 @@ fn a_chattering_rods_bound_covers_its_nudged_runs() {
     use rayon::prelude::*;
     let rod = survey_rod_33();
     let lattice = Cell::new((0.0, 0.0));
-    let outcome = solve_observed(&rod, &WaveConfig::default(), &|p| {
-        if let LadderProgress::LevelDone { per_transit, .. } = p {
+    let levels = Cell::new(0);
+    let further = Cell::new(None);
+    let outcome = solve_observed(&rod, &WaveConfig::default(), &|p| match p {
+        LadderProgress::LevelDone {
+            level, per_transit, ..
+        } => {
             // the ladder halves (0.2, 4e-3) together
             lattice.set((per_transit, per_transit * 4e-3 / 0.2));
+            levels.set(level);
         }
+        LadderProgress::FurtherTwins { level, .. } => further.set(Some(level)),
+        LadderProgress::LadderStarted { .. } => {}
     })
     .unwrap()
     .outcome;
+    // the further twins were announced, for the level reported
+    assert_eq!(further.get(), Some(levels.get()));
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
