@@ -4,12 +4,12 @@
 //! `solve.rs` for when a run is merged, and `convergence.rs` for what the
 //! levels' differences say).
 
-use crate::config::{COARSEST, WaveConfig};
+use crate::config::{COARSEST, Precision, Resolution, WaveConfig};
 use crate::convergence::{LOOK_BACK, SLOWEST_ORDER, converging, observed_order, refinement_error};
 use crate::engine::WaveEngine;
 use crate::error::WaveError;
 use crate::solve::{LadderProgress, run};
-use crate::twins::{NUDGES, further_twins, merged_at, needs_further, nudged};
+use crate::twins::{NUDGES, further_twins, needs_further, nudged};
 use impact_model::Rod;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -46,6 +46,20 @@ pub(crate) fn lattice_spacing(
     t_max: f64,
 ) -> f64 {
     (per_transit * transit).min(per_longest * t_max)
+}
+
+/// The config of a merged level on the lattice `(p, l)` (its twins run
+/// on the same).
+pub(crate) fn merged_at(config: &WaveConfig, p: f64, l: f64, max_events: u64) -> WaveConfig {
+    WaveConfig {
+        resolution: Resolution::Merged {
+            per_transit: p,
+            per_longest: l,
+        },
+        precision: Precision::Double,
+        max_events: max_events.min(config.max_events),
+        ..config.clone()
+    }
 }
 
 /// Levels a ladder needs before its estimate is trusted: two comparisons.

@@ -17,8 +17,9 @@
 //! bound, gets two more: three twins, for one more run's time on two
 //! cores.
 
-use crate::config::{Precision, Resolution, WaveConfig};
+use crate::config::WaveConfig;
 use crate::error::WaveError;
+use crate::ladder::merged_at;
 use crate::solve::run;
 use impact_model::Rod;
 
@@ -55,19 +56,6 @@ pub(crate) fn nudged(rod: &Rod, nudge: f64) -> Rod {
 /// under its refinement error is left with its one twin).
 pub(crate) fn needs_further(first: f64, refined: f64) -> bool {
     first > AMPLIFIED && ONE_SAMPLE_LOW * first > refined
-}
-
-/// The merged config of a level on the lattice `(p, l)`.
-pub(crate) fn merged_at(config: &WaveConfig, p: f64, l: f64, max_events: u64) -> WaveConfig {
-    WaveConfig {
-        resolution: Resolution::Merged {
-            per_transit: p,
-            per_longest: l,
-        },
-        precision: Precision::Double,
-        max_events: max_events.min(config.max_events),
-        ..config.clone()
-    }
 }
 
 /// The further twins on the lattice `(p, l)`, side by side: each one's
