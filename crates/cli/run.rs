@@ -174,7 +174,9 @@ pub fn compute(a: &RunArgs, given: Option<Scene>) -> anyhow::Result<Computed> {
                 RigidError::Unfinished { .. } => anyhow::Error::new(e).context(
                     "the rigid-bottom model could not finish (raise --horizon, or drop it for the exact escape rule)",
                 ),
-                e => anyhow::Error::new(e).context("the rigid-bottom model could not finish"),
+                RigidError::EventLimit { .. } => anyhow::Error::new(e).context(
+                    "the rigid-bottom model could not finish (it follows every piece of the stack's waves exactly and merges none, so on a stack of several layers they multiply as the exact engine's fronts do: use --engine wave, whose merged lattice bounds them)",
+                ),
             })?;
             if a.wall_trace.is_some() {
                 return Err(input(
