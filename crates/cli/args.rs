@@ -84,7 +84,7 @@ pub struct WaveArgs {
     /// Arithmetic: checked (double, repeated in double-double when rounding may matter), double, double-double
     #[arg(long, value_enum, default_value_t = PrecisionChoice::Checked)]
     pub precision: PrecisionChoice,
-    /// Give a run up after this much work: loop events, and the fronts and lattice cells of leaps
+    /// Give a run up after this much work: loop events, and the fronts and lattice cells of leaps (the rigid-bottom model: its events, at most 2e7)
     #[arg(long, value_name = "N", value_parser = parse_count, allow_negative_numbers = true, default_value_t = 200_000_000)]
     pub max_events: u64,
 }

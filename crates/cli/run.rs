@@ -175,7 +175,7 @@ pub fn compute(a: &RunArgs, given: Option<Scene>) -> anyhow::Result<Computed> {
                     "the rigid-bottom model could not finish (raise --horizon, or drop it for the exact escape rule)",
                 ),
                 RigidError::EventLimit { .. } => anyhow::Error::new(e).context(
-                    "the rigid-bottom model could not finish (it follows every piece of the stack's waves exactly and merges none, so on a stack of several layers they multiply as the exact engine's fronts do: use --engine wave, whose merged lattice bounds them)",
+                    "the rigid-bottom model could not finish (raise --max-events, up to its 2e7; it follows every piece of the stack's waves exactly and merges none, so on stacks of several layers they can multiply past any budget: --engine wave bounds them on its merged lattice)",
                 ),
             })?;
             if a.wall_trace.is_some() {

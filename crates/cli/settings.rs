@@ -66,6 +66,9 @@ impl EngineArgs {
             }
             (EngineChoice::RigidBottom, false) => Engine::RigidBottom(RigidConfig {
                 stop: horizon.map_or(RigidStop::Escape, |factor| RigidStop::Horizon { factor }),
+                // its events cost more than the exact engine's: its own
+                // budget, unless the flag asks for less
+                max_events: self.wave.max_events.min(RigidConfig::default().max_events),
                 ..RigidConfig::default()
             }),
             (EngineChoice::Chain, _) | (EngineChoice::Auto, true) => {

@@ -195,6 +195,32 @@ fn rigid_bottom_engine_gives_the_lower_region_limit() {
     assert!(diff < 1e-9, "{diff}");
 }
 
+/// `--max-events` bounds the rigid-bottom model too: a point of the paper's
+/// grid whose base lands hundreds of times (597 events) stops at 100, exit
+/// 1, and the message says what to raise and which engine bounds the work;
+/// given its 597, it finishes.
+#[test]
+fn max_events_bounds_the_rigid_bottom_model() {
+    let point = [
+        "run",
+        "--x",
+        "0.9",
+        "--alpha",
+        "0.001",
+        "--engine",
+        "rigid-bottom",
+    ];
+    let out = impact(&[&point[..], &["--max-events", "100"]].concat());
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    let err = stderr(&out);
+    for needle in ["after 100 events", "raise --max-events", "--engine wave"] {
+        assert!(err.contains(needle), "{needle}: {err}");
+    }
+    assert!(stdout(&out).is_empty());
+    let v = run_json(&[&point[..], &["--max-events", "597"]].concat());
+    assert_eq!(v["events"], 597);
+}
+
 /// Two five- and six-layer rods of the layer survey (`scripts/survey-layers.py`,
 /// seed 7, rods 2 and 3) that need the merged ladder: one whose last three
 /// levels' differences grow, one whose shrink. The outcome carries what the
