@@ -217,6 +217,33 @@ impl ExpPoly {
         ExpPoly { p: d(&self.p), q }
     }
 
+    /// How a function that is zero at 0, and not above it at `from`, leaves
+    /// zero: stepping out from `from` by doublings up to `span` until it
+    /// stands clearly above or below the rounding of its terms. A mass
+    /// lifting off from rest starts with height, speed and push all zero,
+    /// so its height rises like `s^3`, under the rounding of its terms for
+    /// a while: taken as a landing at once, at zero speed and pulled up, it
+    /// lifted off again at the same instant, sixteen million times, until
+    /// the budget was spent (a steel base under rubber, silicone and a steel
+    /// top; `tests/limit.rs`).
+    fn clear_of_rounding(&self, from: f64, span: f64, lambda: f64) -> Clear {
+        let mut s = from;
+        loop {
+            let f = self.eval(s, lambda);
+            let noise = 64.0 * f64::EPSILON * self.magnitude(s, lambda);
+            if f > noise {
+                return Clear::Above(s);
+            }
+            if f < -noise {
+                return Clear::Below;
+            }
+            if s >= span {
+                return Clear::Unresolved;
+            }
+            s = (2.0 * s).min(span);
+        }
+    }
+
     /// The first `s` in `(0, span]` where the function, positive at `0` (or
     /// zero there and rising), comes down to zero; `None` if it stays
     /// positive. Intervals are split until a second-order Taylor bound
@@ -287,35 +314,6 @@ enum Clear {
     Below,
     /// Within rounding of zero all the way: no zero that can be told apart.
     Unresolved,
-}
-
-impl ExpPoly {
-    /// How a function that is zero at 0, and not above it at `from`, leaves
-    /// zero: stepping out from `from` by doublings up to `span` until it
-    /// stands clearly above or below the rounding of its terms. A mass
-    /// lifting off from rest starts with height, speed and push all zero,
-    /// so its height rises like `s^3`, under the rounding of its terms for
-    /// a while: taken as a landing at once, at zero speed and pulled up, it
-    /// lifted off again at the same instant, twenty million times, and the
-    /// model gave up after fifteen minutes (a steel base under rubber,
-    /// silicone and a steel top; `tests/limit.rs`).
-    fn clear_of_rounding(&self, from: f64, span: f64, lambda: f64) -> Clear {
-        let mut s = from;
-        loop {
-            let f = self.eval(s, lambda);
-            let noise = 64.0 * f64::EPSILON * self.magnitude(s, lambda);
-            if f > noise {
-                return Clear::Above(s);
-            }
-            if f < -noise {
-                return Clear::Below;
-            }
-            if s >= span {
-                return Clear::Unresolved;
-            }
-            s = (2.0 * s).min(span);
-        }
-    }
 }
 
 /// `c s^k`.

@@ -76,12 +76,12 @@ fn resting_early_stays_within_its_bound() {
 }
 
 /// A steel base under rubber, silicone and a steel top: the top's mass
-/// presses the soft layers for about twenty of their transits, and the
+/// presses the soft layers for about a dozen of their transits, and the
 /// base lands and lifts off 1,072 times. At a lift-off from rest the base's
 /// height rises like `s^3`, under the rounding of its terms for a while;
 /// taken as a landing at zero speed, pulled up, it lifted off again at the
-/// same instant until the event budget was spent (fifteen minutes at the
-/// default budget, on a second scene). Here it finishes, and agrees with
+/// same instant until the event budget was spent (sixteen million events
+/// at one instant). Here it finishes, and agrees with
 /// the exact engine (an independent code) within both bounds and the
 /// model's own difference, of first order in `t1 / t2` (at most 3 `t1 /
 /// t2` on the real pairs as their base stiffens, `crates/study/tests/
