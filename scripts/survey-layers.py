@@ -18,11 +18,22 @@ largest peak memory (the process's resident set, from `wait4`).
     python3 scripts/survey-layers.py --keep rods/    # keep the scenes (rodNNN.json)
     python3 scripts/survey-layers.py --fast-bottom --seed 11 --timeout 60   # heavy tops, fast bottom groups
     python3 scripts/survey-layers.py --exact-events 8e6   # merged bounds against exact runs
+    python3 scripts/survey-layers.py --fine-budget 1e8    # merged bounds against finer ladders
 
 With --exact-events N, each rod whose default run merged fronts is run again
 exactly (`--resolution exact --max-events N`); where that finishes, the line
 adds the exact `e` and how far the merged `e` is from it in units of its
 bound, and the summary says whether every such bound held (exit 1 if not).
+
+With --fine-budget N, each merged rod is run again with a ladder allowed N
+events and aiming at `1e-12` (`--event-budget N --target 1e-12`), so it
+goes on to finer lattices: the check for rods no exact run can finish. The
+line adds the fine `e`, its bound, and how far the default `e` is from it
+in units of the default bound, and whether the default run said its
+estimate may be low (its levels not seen converging); the default bound
+held if the two differ by at most the sum of both bounds. A fine run whose own bound is not under a
+quarter of the default's says little about it and is counted apart
+("inconclusive"), as is one that does not finish within --timeout.
 
 Not run by CI (minutes, and timings). Needs only Python 3 and the binary
 (cargo builds it when target/release/impact is missing).
@@ -122,6 +133,30 @@ def run_measured(cmd, timeout):
                 reaped["mib"], floor)
 
 
+def fine_check(impact, path, out, budget, timeout):
+    """The default run `out` against a ladder allowed `budget` events: the
+    line's addition, and `(distance in default bounds, held)`, or None when
+    the fine run says little (did not finish, or its bound is not under a
+    quarter of the default's)."""
+    try:
+        code, stdout, stderr, seconds, _, _ = run_measured(
+            [impact, "run", str(path), "--json", "--event-budget", str(int(budget)),
+             "--target", "1e-12"], timeout)
+    except subprocess.TimeoutExpired:
+        return f"  (fine run over {timeout:.0f} s)", None
+    if code != 0:
+        return f"  (fine run exit {code})", None
+    fine = json.loads(stdout)
+    d = abs(out["restitution"] - fine["restitution"])
+    share = d / out["error_bound"] if out["error_bound"] > 0 else math.inf
+    warned = out["error_estimate"].get("merged_converging") is False
+    line = (f"  fine {fine['restitution']:.10f} +- {fine['error_bound']:.1e} in {seconds:.1f} s, "
+            f"off by {share:.2f} of the bound" + (" (which says it may be low)" if warned else ""))
+    if not fine["error_bound"] < 0.25 * out["error_bound"]:
+        return line + " (inconclusive)", None
+    return line, (share, d <= out["error_bound"] + fine["error_bound"])
+
+
 def memory(mib, floor):
     """A peak in MiB, six wide; one within 5 % of the floor is at most it."""
     return f"{'<=' + format(floor, '.0f'):>6}" if mib <= 1.05 * floor else f"{mib:6.1f}"
@@ -136,13 +171,17 @@ def main():
     parser.add_argument("--timeout", type=float, default=60.0, help="seconds per rod (default 60)")
     parser.add_argument("--exact-events", type=float, default=0, metavar="N",
                         help="check merged rods against exact runs of at most N events (default: no check)")
+    parser.add_argument("--fine-budget", type=float, default=0, metavar="N",
+                        help="check merged rods against ladders allowed N events (default: no check)")
     parser.add_argument("--fast-bottom", action="store_true",
                         help="draw rods with a group of fast layers at the bottom instead (see draw_fast_bottom)")
     parser.add_argument("--keep", type=Path, metavar="DIR",
                         help="write each rod's scene to DIR/rodNNN.json (to rerun one alone)")
     args = parser.parse_args()
-    if args.rods < 1 or args.timeout <= 0 or not 0 < args.speeds <= 12 or not 0 <= args.exact_events < 1e15:
-        print("error: --rods >= 1, --timeout > 0, --speeds in (0, 12], --exact-events in [0, 1e15)",
+    if args.rods < 1 or args.timeout <= 0 or not 0 < args.speeds <= 12 or not 0 <= args.exact_events < 1e15 \
+            or not 0 <= args.fine_budget < 1e15:
+        print("error: --rods >= 1, --timeout > 0, --speeds in (0, 12], --exact-events and --fine-budget "
+              "in [0, 1e15)",
               file=sys.stderr)
         return 2
 
@@ -155,6 +194,7 @@ def main():
     times, unfinished, failed = [], 0, 0
     peak, peak_rod, peak_floor, floor = 0.0, None, 0.0, 0.0
     checked, held, closest = 0, 0, 0.0
+    fine_checked, fine_held, fine_closest, fine_open = 0, 0, 0.0, 0
     print(f"rod  layers  ratio      seconds       events     MiB  e             bound")
     with tempfile.TemporaryDirectory(prefix="impact-survey-") as work:
         for k in range(args.rods):
@@ -199,6 +239,15 @@ def main():
                     exact = f"  exact {x['restitution']:.10f}, off by {share:.2f} of the bound"
                 else:
                     exact = f"  (exact run over {args.exact_events:.0e} events)"
+            if args.fine_budget and out["truncation"]["merged_fronts"] > 0:
+                verdict, share = fine_check(impact, path, out, args.fine_budget, args.timeout)
+                exact += verdict
+                if share is None:
+                    fine_open += 1
+                else:
+                    fine_checked += 1
+                    fine_held += share[1]
+                    fine_closest = max(fine_closest, share[0])
             print(f"{k:3d}  {len(transits):6d}  {ratio:9.1e}  {seconds:7.2f}  {out['events']:11d}  "
                   f"{shown}  {out['restitution']:.10f}  {out['error_bound']:.1e}{exact}", flush=True)
     times.sort()
@@ -216,7 +265,13 @@ def main():
         print(f"merged rods run exactly within {args.exact_events:.0e} events: {checked}; "
               f"within their bound: {held} of {checked}"
               + (f" (the closest at {closest:.2f} of its bound)" if checked else ""))
-    return 1 if failed or held < checked else 0
+    if args.fine_budget:
+        print(f"merged rods run again with --event-budget {args.fine_budget:.0e}: {fine_checked} conclusive, "
+              f"{fine_held} of them within the sum of the two bounds"
+              + (f" (the furthest at {fine_closest:.2f} of the default bound)" if fine_checked else "")
+              + f"; {fine_open} inconclusive (fine bound not under a quarter of the default's, or over "
+              f"--timeout)")
+    return 1 if failed or held < checked or fine_held < fine_checked else 0
 
 
 if __name__ == "__main__":

@@ -12,7 +12,7 @@ use impact_wave::{Precision, Resolution, WaveConfig, simulate};
 use std::time::Instant;
 
 mod common;
-use common::{XorShift, exact_run, random_scene};
+use common::{XorShift, exact_run, random_scene, scene_of};
 
 fn bound(o: &Outcome) -> f64 {
     o.error_bound
@@ -421,5 +421,78 @@ fn double_precision_stays_within_its_a_priori_bound() {
         let ulp = f64::EPSILON * dd.restitution.abs();
         assert!(bound(&dd) >= ulp, "{dd:?}");
         assert!(bound(&dd) - ulp < 1e-6 * bound(&double), "{dd:?}");
+    }
+}
+
+/// Where no exact run can be afforded, a merged bound is checked against
+/// the same engine's ladder allowed far more work, which goes on to finer
+/// lattices (`scripts/survey-layers.py --fine-budget`). Two rods of the
+/// layer survey's third draw (`--seed 29`, rods 15 and 16: three and six
+/// layers, transit ratios `1.4e3` and `1.5e3`) whose exact runs take over
+/// `4e6` events: the default `e` must lie within the sum of both bounds
+/// of the fine one, and the fine bound must be under a quarter of the
+/// default's, or the comparison says little. The fine ladder is itself
+/// checked against exact runs where they fit (the survey's rods 5 and
+/// 13: within `3.7e-9` and `4.4e-8`, off by `9.5e-10` and `2.4e-9`).
+#[test]
+fn merged_bounds_hold_against_finer_ladders() {
+    let rods = [
+        vec![
+            (0.22371314199600595, 94.457515522471, 1.0432724156179771),
+            (0.20235335595167597, 1430177129.8692677, 9.855998554339829),
+            (0.9059854822331477, 9576240890.378708, 3.463070852655157),
+        ],
+        vec![
+            (0.8008201439970872, 614.4749913157968, 2.6445912841475763),
+            (1.1689817855227507, 615.5283586966264, 0.31658485864237773),
+            (0.21646496837467472, 15206.621929467201, 1.3416724195938445),
+            (0.4798487624965257, 585511925.3836063, 3.1661626488144594),
+            (0.7685975198773223, 4385438.946774002, 1.3261301196239093),
+            (0.9795673732267791, 997497.2357601334, 3.8209692544389697),
+        ],
+    ];
+    let fine = WaveConfig {
+        resolution: Resolution::Auto {
+            exact_events: 200_000,
+            budget_events: 30_000_000,
+            target: 1e-12,
+        },
+        ..WaveConfig::default()
+    };
+    for (k, layers) in rods.iter().enumerate() {
+        let rod = scene_of(
+            layers
+                .iter()
+                .map(|&(length, modulus, density)| Layer::elastic(length, modulus, density))
+                .collect(),
+        )
+        .validate()
+        .unwrap();
+        assert!(
+            exact_run(&rod, 4_000_000, true).is_none(),
+            "rod {k}: an exact run fits, which `random_layered_rods_finish_within_their_bound` checks"
+        );
+        let o = simulate(&rod, &WaveConfig::default()).unwrap();
+        let f = simulate(&rod, &fine).unwrap();
+        let (b, bf) = (bound(&o), bound(&f));
+        let d = (o.restitution - f.restitution).abs();
+        eprintln!(
+            "rod {k}: default {:.10} ± {b:.1e}, fine {:.10} ± {bf:.1e}, |d| = {d:.1e} ({:.2} of the bound)",
+            o.restitution,
+            f.restitution,
+            d / b
+        );
+        assert!(
+            o.truncation.expect("wave outcome").merged_fronts > 0,
+            "rod {k}: {o:?}"
+        );
+        assert!(
+            bf < 0.25 * b,
+            "rod {k}: the fine ladder is no finer\n{o:?}\n{f:?}"
+        );
+        assert!(
+            d <= b + bf,
+            "rod {k}: |e - e_fine| = {d:.3e} exceeds the bound {b:.3e}\n{o:?}\n{f:?}"
+        );
     }
 }
