@@ -251,6 +251,11 @@ fn a_merged_outcome_says_whether_its_levels_converge() {
         let out = impact(&["run", path]);
         assert!(out.status.success(), "{}", stderr(&out));
         assert_eq!(stdout(&out).contains(warning), !converging);
+        // and says how to check it
+        assert_eq!(
+            stdout(&out).contains("a larger --event-budget checks it"),
+            !converging
+        );
         said[k] = !converging;
     }
     // the first rod's differences grow, the second's shrink
