@@ -5,7 +5,9 @@
 //! levels' differences say).
 
 use crate::config::{COARSEST, Precision, Resolution, WaveConfig};
-use crate::convergence::{LOOK_BACK, SLOWEST_ORDER, converging, observed_order, refinement_error};
+use crate::convergence::{
+    LOOK_BACK, SLOWEST_ORDER, assumed_order, converging, observed_order, refinement_error,
+};
 use crate::engine::WaveEngine;
 use crate::error::WaveError;
 use crate::solve::{LadderProgress, run};
@@ -115,8 +117,9 @@ fn merge_check(
         order,
         converging,
         method: format!(
-            "merged: twice the larger of the refinement estimate ({refined:.1e}: the largest |e - e(2^j as coarse)| / (2^j - 1) over {} coarser lattices) and {chaos}; lattice spacings {p:.3e} of each transit, {l:.1e} of the longest ({used} units of work in all: loop iterations, and the fronts and lattice cells of leaps){seen}",
+            "merged: twice the larger of the refinement estimate ({refined:.1e}: the largest |e - e(2^j as coarse)| / (2^(j p) - 1) over {} coarser lattices, p = {:.2}: the levels' order within [{SLOWEST_ORDER}, 1]) and {chaos}; lattice spacings {p:.3e} of each transit, {l:.1e} of the longest ({used} units of work in all: loop iterations, and the fronts and lattice cells of leaps){seen}",
             (levels.len() - 1).min(LOOK_BACK),
+            assumed_order(levels),
         ),
     }
 }

@@ -538,8 +538,9 @@ fn a_ladder_reports_each_level_and_the_last_is_the_outcome() {
 /// A ladder's levels before the third run side by side and without their
 /// perturbed twins; what it reports is still what each level run alone
 /// gives: every level's `e` bit for bit, and the bound twice the larger of
-/// the refinement estimate (`|e - e(2^j as coarse)| / (2^j - 1)` over up
-/// to four coarser levels) and the reported level's difference from its
+/// the refinement estimate (`|e - e(2^j as coarse)| / (2^(j p) - 1)` over
+/// up to four coarser levels, `p` the last three levels' order within
+/// `[0.5, 1]`) and the reported level's difference from its
 /// twin (the bottom's modulus changed by `1e-12`), recomputed here from
 /// runs of the engine alone.
 #[test]
@@ -562,8 +563,12 @@ fn a_ladder_reports_what_its_levels_run_alone_give() {
     assert_eq!(levels, reported);
     let finest = levels[levels.len() - 1];
     assert_eq!(outcome.restitution, finest);
-    let refined = (1..=4.min(levels.len() - 1))
-        .map(|j| (finest - levels[levels.len() - 1 - j]).abs() / (2f64.powi(j as i32) - 1.0))
+    let n = levels.len();
+    let order = ((levels[n - 3] - levels[n - 2]).abs() / (levels[n - 2] - finest).abs())
+        .log2()
+        .clamp(0.5, 1.0);
+    let refined = (1..=4.min(n - 1))
+        .map(|j| (finest - levels[n - 1 - j]).abs() / (2f64.powf(j as f64 * order) - 1.0))
         .fold(0.0, f64::max);
     let mut scene = rod.scene().clone();
     scene.layers[0].modulus *= 1.0 + 1e-12;
