@@ -113,9 +113,11 @@ pub fn summary(title: &str, o: &Timed<Outcome>) -> String {
             parts.push(format!("double precision alone was off by {loss:.1e}"));
         }
         if est.merged_converging == Some(false) {
-            // (such bounds were 1.06 to 37 times too small on 5 of the 11
-            // fast-bottom survey rods that said so: README)
-            let check = "the merged estimate may be low, by ten times or more (a larger --event-budget checks it)";
+            // (such bounds were 3.4 to 15 times too small on 3 of the 11
+            // fast-bottom survey rods that said so, against finer ladders:
+            // README)
+            let check =
+                "the merged estimate may be low, even tenfold (a larger --event-budget checks it)";
             parts.push(match est.merged_observed_order {
                 Some(order) => format!(
                     "the merged levels show order {order:.1}, below {}: {check}",
