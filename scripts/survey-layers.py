@@ -28,12 +28,13 @@ bound, and the summary says whether every such bound held (exit 1 if not).
 With --fine-budget N, each merged rod is run again with a ladder allowed N
 events and aiming at `1e-12` (`--event-budget N --target 1e-12`), so it
 goes on to finer lattices: the check for rods no exact run can finish. The
-line adds the fine `e`, its bound, and how far the default `e` is from it
-in units of the default bound, and whether the default run said its
-estimate may be low (its levels not seen converging); the default bound
-held if the two differ by at most the sum of both bounds. A fine run whose own bound is not under a
-quarter of the default's says little about it and is counted apart
-("inconclusive"), as is one that does not finish within --timeout.
+line adds the fine `e`, its bound, how far the default `e` is from it in
+units of the default bound, and whether the default run said its estimate
+may be low (its levels not seen converging); the default bound held if the
+two differ by at most the sum of both bounds. A fine run whose own bound
+is not under a quarter of the default's says little about it and is
+counted apart ("inconclusive"), as is one that does not finish within
+--timeout; the summary counts both, and exit 1 if a conclusive check failed.
 
 Not run by CI (minutes, and timings). Needs only Python 3 and the binary
 (cargo builds it when target/release/impact is missing).

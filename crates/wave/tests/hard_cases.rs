@@ -657,7 +657,7 @@ fn ladder_level(rod: &impact_model::Rod, k: usize) -> (f64, u64) {
 /// whole contact. Since the block's sums are taken by FFT
 /// (`block/partitioned.rs`) the default finishes, in 23 s on two cores
 /// (21.8 M loop events at the third lattice, 2,083 bounces, `e =
-/// 0.99998649 ± 1.1e-7`, saying that its levels are not yet seen
+/// 0.99998649 ± 2.3e-7`, saying that its levels are not yet seen
 /// converging; `e = 0.99998780` is the layer survey's rod 8, of which
 /// this scene is a three-digit copy); the sums had cost
 /// `1.1e7` units of work a unit of time at the second lattice, past the
