@@ -12,7 +12,7 @@ use impact_wave::{Precision, Resolution, WaveConfig, simulate};
 use std::time::Instant;
 
 mod common;
-use common::{XorShift, exact_run, random_scene, scene_of};
+use common::{XorShift, exact_run, random_scene};
 
 fn bound(o: &Outcome) -> f64 {
     o.error_bound
@@ -460,14 +460,7 @@ fn merged_bounds_hold_against_finer_ladders() {
         ..WaveConfig::default()
     };
     for (k, layers) in rods.iter().enumerate() {
-        let rod = scene_of(
-            layers
-                .iter()
-                .map(|&(length, modulus, density)| Layer::elastic(length, modulus, density))
-                .collect(),
-        )
-        .validate()
-        .unwrap();
+        let rod = Scene::elastic_stack(1.0, layers).validate().unwrap();
         assert!(
             exact_run(&rod, 4_000_000, true).is_none(),
             "rod {k}: an exact run fits, which `random_layered_rods_finish_within_their_bound` checks"
@@ -506,18 +499,16 @@ fn merged_bounds_hold_against_finer_ladders() {
 /// and the bound must hold against the exact run.
 #[test]
 fn slowly_converging_levels_widen_the_bound() {
-    let rod = scene_of(
-        [
+    let rod = Scene::elastic_stack(
+        1.0,
+        &[
             (0.766341223706392, 1556394676.5382056, 8.057417195542698),
             (0.7154914330707784, 223659056.34863877, 1.7186423086208038),
             (0.2539928932237902, 14411192141.902554, 6.296018857315467),
             (1.0745131841344766, 201508.38626808045, 3.9422688859382253),
             (0.5989788323202729, 6584896.840330086, 0.16109207937552134),
             (0.2622478216186876, 43.63685645826843, 0.13636258695047043),
-        ]
-        .iter()
-        .map(|&(length, modulus, density)| Layer::elastic(length, modulus, density))
-        .collect(),
+        ],
     )
     .validate()
     .unwrap();
