@@ -45,9 +45,21 @@ pub fn all() -> &'static [Material] {
     })
 }
 
-/// The material called `name` (exact, lowercase), if the table has it.
+/// The material called `name`, if the table has it: its name in the
+/// table in any case, with spaces or underscores for its hyphens
+/// (`"Natural rubber"`, `"PMMA"`, `"tungsten_carbide"`), and `"aluminum"`
+/// for aluminium, as users write them.
 pub fn find(name: &str) -> Option<&'static Material> {
-    all().iter().find(|m| m.name == name)
+    let key: String = name
+        .trim()
+        .chars()
+        .map(|c| match c {
+            ' ' | '_' => '-',
+            c => c.to_ascii_lowercase(),
+        })
+        .collect();
+    let key = if key == "aluminum" { "aluminium" } else { &key };
+    all().iter().find(|m| m.name == key)
 }
 
 /// The names, comma-separated, for error messages.
@@ -62,6 +74,27 @@ pub fn names() -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn names_are_found_as_users_write_them() {
+        for (written, name) in [
+            ("Natural rubber", "natural-rubber"),
+            ("natural_rubber", "natural-rubber"),
+            ("PMMA", "pmma"),
+            (" Tungsten Carbide ", "tungsten-carbide"),
+            ("aluminum", "aluminium"),
+            ("Aluminium", "aluminium"),
+        ] {
+            assert_eq!(
+                find(written).map(|m| m.name.as_str()),
+                Some(name),
+                "{written}"
+            );
+        }
+        for unknown in ["rubber", "natural--rubber", "unobtainium", ""] {
+            assert!(find(unknown).is_none(), "{unknown}");
+        }
+    }
 
     #[test]
     fn the_table_has_the_materials_users_ask_for() {

@@ -708,6 +708,13 @@ mod tests {
         assert_eq!(scene.layers[0].density, steel.density);
         // a number the layer gives itself wins
         assert_eq!(scene.layers[1].density, 1000.0);
+        // a name as a user writes it
+        let rubber = Scene::from_json(
+            r#"{"impact_speed": 1, "layers": [{"material": "Natural rubber", "length": 1}]}"#,
+        )
+        .unwrap();
+        let table = crate::materials::find("natural-rubber").unwrap();
+        assert_eq!(rubber.layers[0].modulus, table.modulus);
         // round trip through JSON
         let again = Scene::from_json(&serde_json::to_string(&scene).unwrap()).unwrap();
         assert_eq!(again, scene);
