@@ -17,6 +17,7 @@ largest peak memory (the process's resident set, from `wait4`).
     IMPACT=path/to/impact python3 scripts/survey-layers.py
     python3 scripts/survey-layers.py --keep rods/    # keep the scenes (rodNNN.json)
     python3 scripts/survey-layers.py --fast-bottom --seed 11 --timeout 60   # heavy tops, fast bottom groups
+    python3 scripts/survey-layers.py --materials --seed 5   # stacks of the table's real materials, SI units
     python3 scripts/survey-layers.py --exact-events 8e6   # merged bounds against exact runs
     python3 scripts/survey-layers.py --fine-budget 1e8    # merged bounds against finer ladders
 
@@ -94,6 +95,23 @@ def draw_fast_bottom(rng):
     if rng.random() < 0.5:
         layers.append(layer(10 ** rng.uniform(-2, 0)))
     return {"impact_speed": 1.0, "layers": layers}
+
+
+def draw_materials(rng, table):
+    """One stack of real materials (--materials): 2 to 5 layers, each a
+    material of `data/materials.json` named as a user writes it, 0.1 mm to
+    10 cm long (log-uniform), hit at 0.1 to 10 m/s: SI units throughout,
+    the scenes a physicist with a drawer of samples would run."""
+    layers = [{"material": rng.choice(table)["name"].replace("-", " "),
+               "length": 10 ** rng.uniform(-4, -1)}
+              for _ in range(rng.randint(2, 5))]
+    return {"impact_speed": 10 ** rng.uniform(-1, 1), "layers": layers}
+
+
+def resolved(layer, table):
+    """A layer's length, modulus and density, a named material's from the table."""
+    named = next((m for m in table if m["name"] == layer.get("material", "").replace(" ", "-")), {})
+    return layer["length"], layer.get("modulus", named.get("modulus")), layer.get("density", named.get("density"))
 
 
 def run_measured(cmd, timeout):
@@ -176,6 +194,8 @@ def main():
                         help="check merged rods against ladders allowed N events (default: no check)")
     parser.add_argument("--fast-bottom", action="store_true",
                         help="draw rods with a group of fast layers at the bottom instead (see draw_fast_bottom)")
+    parser.add_argument("--materials", action="store_true",
+                        help="draw stacks of the table's real materials in SI units instead (see draw_materials)")
     parser.add_argument("--keep", type=Path, metavar="DIR",
                         help="write each rod's scene to DIR/rodNNN.json (to rerun one alone)")
     args = parser.parse_args()
@@ -191,6 +211,10 @@ def main():
         print("== building impact (cargo build --release)", flush=True)
         subprocess.run(["cargo", "build", "--release", "--locked", "--quiet"], cwd=ROOT, check=True)
 
+    if args.fast_bottom and args.materials:
+        print("error: --fast-bottom and --materials draw different rods: give one", file=sys.stderr)
+        return 2
+    table = json.loads((ROOT / "data/materials.json").read_text())["materials"]
     rng = random.Random(args.seed)
     times, unfinished, failed = [], 0, 0
     peak, peak_rod, peak_floor, floor = 0.0, None, 0.0, 0.0
@@ -199,13 +223,17 @@ def main():
     print(f"rod  layers  ratio      seconds       events     MiB  e             bound")
     with tempfile.TemporaryDirectory(prefix="impact-survey-") as work:
         for k in range(args.rods):
-            scene = draw_fast_bottom(rng) if args.fast_bottom else draw(rng, args.speeds)
+            if args.materials:
+                scene = draw_materials(rng, table)
+            else:
+                scene = draw_fast_bottom(rng) if args.fast_bottom else draw(rng, args.speeds)
             path = Path(work) / f"rod{k:03d}.json"
             path.write_text(json.dumps(scene))
             if args.keep:
                 args.keep.mkdir(parents=True, exist_ok=True)
                 (args.keep / path.name).write_text(json.dumps(scene, indent=1))
-            transits = [l["length"] / math.sqrt(l["modulus"] / l["density"]) for l in scene["layers"]]
+            transits = [length / math.sqrt(modulus / density)
+                        for length, modulus, density in (resolved(l, table) for l in scene["layers"])]
             ratio = max(transits) / min(transits)
             try:
                 code, stdout, stderr, seconds, mib, at_least = run_measured(
@@ -254,7 +282,8 @@ def main():
     times.sort()
     over = sum(t > 1.0 for t in times)
     p90 = times[min(len(times) - 1, int(0.9 * len(times)))] if times else float("nan")
-    drawn = "fast bottom groups" if args.fast_bottom else f"ratios up to 1e{args.speeds:g}"
+    drawn = ("fast bottom groups" if args.fast_bottom else "stacks of real materials" if args.materials
+             else f"ratios up to 1e{args.speeds:g}")
     print(f"{args.rods} rods (seed {args.seed}, {drawn}); of the {len(times)} "
           f"that finished: median {statistics.median(times) if times else float('nan'):.2f} s, "
           f"90th percentile {p90:.2f} s, largest finished {max(times) if times else float('nan'):.2f} s; "
