@@ -148,6 +148,10 @@ pub struct Tracer<R: Real> {
     recording: Recording,
     pub(crate) drops: Ledger,
     decisions: Decisions,
+    /// Whether the front `take_head` took last was one a lattice lane
+    /// keeps where it was born (not a deposit): a separation it decides is
+    /// not a lattice point's (`Decisions::separations_on_lattice`).
+    last_taken_kept: bool,
     pub(crate) events: u64,
     /// Reflections at a folded top whose fronts came back: events of the
     /// unfolded engine, counted so that both report the same work.
@@ -314,6 +318,7 @@ impl<R: Real> Tracer<R> {
             return Ok(None);
         };
         let jump = lane.delivered(front.jump);
+        self.last_taken_kept = front.kept;
         if lane.folded {
             // the front reflected at the top on its way: that reflection is
             // an event of the unfolded engine, and moves the top's base
@@ -556,6 +561,11 @@ impl<R: Real> Tracer<R> {
             let r = wall::reflect(self.contact, from_above, c0, t, self.grazing_strain);
             self.contact = r.state;
             if r.separated {
+                if !self.last_taken_kept
+                    && self.from_above[0].is_some_and(|lane| self.lanes[lane].lattice_arrival(t))
+                {
+                    self.decisions.separations_on_lattice += 1;
+                }
                 self.history.separate(t.to_f64() * self.units.time);
                 self.drops.at_separation =
                     (self.drops.dropped_force, self.drops.dropped_force_time);

@@ -13,7 +13,10 @@ use crate::error::WaveError;
 use crate::solve::{LadderProgress, run};
 use crate::twins::{NUDGES, further_twins, needs_further, nudged};
 use impact_model::Rod;
+use shared::{OFF_LATTICE, OFF_LATTICE_GAIN, shared_decisions};
 use std::sync::atomic::{AtomicBool, Ordering};
+
+mod shared;
 
 /// What the merged runs say about the reported one.
 pub(crate) struct MergeCheck {
@@ -74,12 +77,14 @@ const MIN_LEVELS: usize = 3;
 fn merge_check(
     levels: &[f64],
     nudged_runs: &[(f64, f64)],
+    off_lattice: Option<f64>,
     p: f64,
     l: f64,
     used: u64,
 ) -> MergeCheck {
     let fine = levels.last().copied().unwrap_or(0.0);
     let refined = refinement_error(levels);
+    let off = off_lattice.map_or(0.0, |e| (e - fine).abs() * OFF_LATTICE_GAIN);
     let perturbed = nudged_runs
         .iter()
         .map(|(_, e)| (e - fine).abs())
@@ -110,16 +115,33 @@ fn merge_check(
         ),
         [] => "no twin (not run at this level)".to_string(),
     };
+    let shared = match off_lattice {
+        Some(e) => format!(
+            "; this level and the one before it decided their contacts at the same instants, a separation at a lattice point both hold, so a level on a lattice {OFF_LATTICE:.3} times as fine, which holds none of their points, was run: its difference times {OFF_LATTICE_GAIN:.2} ({off:.1e}; its e {e:.10})"
+        ),
+        None => String::new(),
+    };
     MergeCheck {
         per_transit: p,
         per_longest: l,
-        bound: 2.0 * refined.max(perturbed),
+        bound: 2.0 * refined.max(perturbed).max(off),
         order,
         converging,
         method: format!(
-            "merged: twice the larger of the refinement estimate ({refined:.1e}: the largest |e - e(2^j as coarse)| / (2^(j p) - 1) over {} coarser lattices, p = {:.2}: the levels' order within [{SLOWEST_ORDER}, 1]) and {chaos}; lattice spacings {p:.3e} of each transit, {l:.1e} of the longest ({used} units of work in all: loop iterations, and the fronts and lattice cells of leaps){seen}",
+            "merged: twice the {} of the refinement estimate ({refined:.1e}: the largest |e - e(2^j as coarse)| / (2^(j p) - 1) over {} coarser lattices, p = {:.2}: the levels' order within [{SLOWEST_ORDER}, 1]){}{chaos}{}; lattice spacings {p:.3e} of each transit, {l:.1e} of the longest ({used} units of work in all: loop iterations, and the fronts and lattice cells of leaps){seen}{shared}",
+            if off_lattice.is_some() {
+                "largest"
+            } else {
+                "larger"
+            },
             (levels.len() - 1).min(LOOK_BACK),
             assumed_order(levels),
+            if off_lattice.is_some() { ", " } else { " and " },
+            if off_lattice.is_some() {
+                " and the off-lattice level's (below)"
+            } else {
+                ""
+            },
         ),
     }
 }
@@ -171,6 +193,8 @@ pub(crate) fn fixed_lattice(
         levels,
         lattice: (p, l),
         used,
+        // the coarser runs are not kept to compare their contacts
+        shared: false,
     };
     level.checked(rod, config, max, "", &|_| {})
 }
@@ -259,11 +283,13 @@ pub(crate) fn ladder(
         level: 2,
         per_transit: p1,
         restitution: second.restitution(),
-        bound: merge_check(&levels, &nudged_runs, p1, l1, used).bound,
+        bound: merge_check(&levels, &nudged_runs, None, p1, l1, used).bound,
         work: used,
     });
     let reported = too_long(&second).then(|| past_the_limit(2 * second.steps(), max, 2));
+    let shared = shared_decisions(&second, &first);
     let second = Level {
+        shared,
         engine: second,
         twin: twin.map(|(e, _)| e),
         levels: levels.clone(),
@@ -297,7 +323,14 @@ pub(crate) fn ladder(
         };
         used += fine.steps() + twin.steps();
         levels.push(fine.restitution());
-        let check = merge_check(&levels, &[(NUDGES[0], twin.restitution())], p, l, used);
+        let check = merge_check(
+            &levels,
+            &[(NUDGES[0], twin.restitution())],
+            None,
+            p,
+            l,
+            used,
+        );
         observe(LadderProgress::LevelDone {
             level: levels.len(),
             per_transit: p,
@@ -309,6 +342,7 @@ pub(crate) fn ladder(
         let next_cost = 2 * (fine.steps() + twin.steps());
         let done = check.bound <= target || used + next_cost > budget || p / 2.0 < FINEST;
         let level = Level {
+            shared: shared_decisions(&fine, &coarser.engine),
             engine: fine,
             twin: Some(twin.restitution()),
             levels: levels.clone(),
@@ -348,6 +382,9 @@ struct Level {
     lattice: (f64, f64),
     /// Work so far, the twin's included if it was run.
     used: u64,
+    /// Whether it decided its contacts where the level before it did, a
+    /// separation at a lattice point both hold (`ladder/shared.rs`).
+    shared: bool,
 }
 
 impl Level {
@@ -386,7 +423,28 @@ impl Level {
             runs.extend(further);
             used += work;
         }
-        let mut check = merge_check(levels, &runs, p, l, used);
+        let off_lattice = if self.shared {
+            let (p, l) = (p * OFF_LATTICE, l * OFF_LATTICE);
+            match run::<f64>(rod, merged_at(config, p, l, max)) {
+                Ok(off) => {
+                    used += off.steps();
+                    Some(off.restitution())
+                }
+                // (not within `max_events`: the bound stands on the rest,
+                // and the method says so below)
+                Err(WaveError::EventLimit { .. }) => None,
+                Err(e) => return Err(e.on_lattice(p)),
+            }
+        } else {
+            None
+        };
+        let mut check = merge_check(levels, &runs, off_lattice, p, l, used);
+        if self.shared && off_lattice.is_none() {
+            check.method.push_str(&format!(
+                "; this level and the one before it decided their contacts at the same instants, a separation at a lattice point both hold, and the level on a lattice {OFF_LATTICE:.3} times as fine that would measure it did not finish within {max} events: the estimate may be low"
+            ));
+            check.converging = false;
+        }
         if unfinished > 0 {
             check.method.push_str(&format!(
                 "; {unfinished} further twin(s) did not finish within {max} events or the time limit and are left out"

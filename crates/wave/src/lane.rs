@@ -235,6 +235,24 @@ impl<R: Real> Lane<R> {
         if self.folded { far + self.transit } else { far }
     }
 
+    /// Whether a front arriving at `t` was born on this lane's lattice
+    /// (a deposit, not a kept front): its birth within a millionth of a
+    /// cell of a lattice point. Never in a lane without a lattice.
+    pub fn lattice_arrival(&self, t: R) -> bool {
+        match self.rule {
+            MergeRule::Lattice { spacing, .. } => {
+                let trip = if self.folded {
+                    self.transit + self.transit
+                } else {
+                    self.transit
+                };
+                let cells = ((t - trip) / spacing).to_f64();
+                (cells - cells.round()).abs() <= 1e-6
+            }
+            MergeRule::Simultaneous { .. } => false,
+        }
+    }
+
     /// Arrival time of the head front.
     #[inline]
     pub fn head_arrival(&self) -> Option<R> {
@@ -386,6 +404,35 @@ impl<R: Real> Lane<R> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn arrivals_of_lattice_deposits_are_told_from_kept_fronts() {
+        let rule = MergeRule::Lattice {
+            spacing: 0.1,
+            keep_above: 1.0,
+            keep_at_most: 4,
+        };
+        let mut lane = Lane::new(0, Direction::Down, 2.0, rule);
+        // born at the lattice's points 7 and 2,000,000
+        assert!(lane.lattice_arrival(2.0 + 0.7));
+        assert!(lane.lattice_arrival(2.0 + 200_000.0));
+        // born between them, a millionth of a cell off
+        assert!(!lane.lattice_arrival(2.0 + 0.75));
+        assert!(!lane.lattice_arrival(2.0 + 0.7 + 2e-7));
+        // a folded lane's fronts come back after two transits
+        lane.folded = true;
+        assert!(lane.lattice_arrival(4.0 + 0.7));
+        assert!(!lane.lattice_arrival(2.0 + 0.75));
+        let exact = Lane::new(
+            0,
+            Direction::Down,
+            2.0,
+            MergeRule::Simultaneous {
+                window: Window::fixed(1e-9),
+            },
+        );
+        assert!(!exact.lattice_arrival(2.0));
+    }
 
     #[test]
     fn fronts_born_together_merge() {

@@ -28,6 +28,14 @@ pub struct Decisions {
     pub within_tolerance: u64,
     /// Of those, the wall strains taken as zero.
     pub grazed: u64,
+    /// Separations decided at the arrival of a lattice deposit (merged
+    /// runs; not a kept front, though one born at a lattice point, as a
+    /// front born a whole number of the bottom's transits after the impact
+    /// is on lattices of a fifth, a tenth, ... of that transit): their
+    /// instant is a lattice point's, and a finer lattice that
+    /// holds the same point may decide at the same instant (see
+    /// `ladder.rs`, shared decisions).
+    pub separations_on_lattice: u64,
 }
 
 /// Drops and merges, with what the error estimate needs of them.

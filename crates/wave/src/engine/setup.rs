@@ -180,6 +180,7 @@ impl<R: Real> Tracer<R> {
                 smallest_margin: f64::INFINITY,
                 ..Decisions::default()
             },
+            last_taken_kept: false,
             events: 0,
             folded_reflections: 0,
             leaped: 0,
