@@ -6,7 +6,8 @@
 
 use crate::config::{COARSEST, Precision, Resolution, WaveConfig};
 use crate::convergence::{
-    LOOK_BACK, SLOWEST_ORDER, assumed_order, converging, observed_order, refinement_error,
+    FASTEST_ORDER, LOOK_BACK, SLOWEST_ORDER, agree_by_chance, assumed_order, converging,
+    observed_order, refinement_error,
 };
 use crate::engine::WaveEngine;
 use crate::error::WaveError;
@@ -128,14 +129,23 @@ fn merge_check(
         order,
         converging,
         method: format!(
-            "merged: twice the {} of the refinement estimate ({refined:.1e}: the largest |e - e(2^j as coarse)| / (2^(j p) - 1) over {} coarser lattices, p = {:.2}: the levels' order within [{SLOWEST_ORDER}, 1]){}{chaos}{}; lattice spacings {p:.3e} of each transit, {l:.1e} of the longest ({used} units of work in all: loop iterations, and the fronts and lattice cells of leaps){seen}{shared}",
+            "merged: twice the {} of the refinement estimate ({refined:.1e}: the largest |e - e(2^j as coarse)| over {} coarser lattices{}){}{chaos}{}; lattice spacings {p:.3e} of each transit, {l:.1e} of the longest ({used} units of work in all: loop iterations, and the fronts and lattice cells of leaps){seen}{shared}",
             if off_lattice.is_some() {
                 "largest"
             } else {
                 "larger"
             },
             (levels.len() - 1).min(LOOK_BACK),
-            assumed_order(levels),
+            if agree_by_chance(levels) {
+                format!(
+                    ", undivided: the last three converge faster than order {FASTEST_ORDER}, faster than a merge does, so the last two agree in part by chance"
+                )
+            } else {
+                format!(
+                    ", divided by 2^(j p) - 1, p = {:.2}: the levels' order within [{SLOWEST_ORDER}, 1]",
+                    assumed_order(levels)
+                )
+            },
             if off_lattice.is_some() { ", " } else { " and " },
             if off_lattice.is_some() {
                 " and the off-lattice level's (below)"

@@ -540,7 +540,8 @@ fn a_ladder_reports_each_level_and_the_last_is_the_outcome() {
 /// gives: every level's `e` bit for bit, and the bound twice the larger of
 /// the refinement estimate (`|e - e(2^j as coarse)| / (2^(j p) - 1)` over
 /// up to four coarser levels, `p` the last three levels' order within
-/// `[0.5, 1]`) and the reported level's difference from its
+/// `[0.5, 1]`, each difference undivided where that order is past 3) and
+/// the reported level's difference from its
 /// twin (the bottom's modulus changed by `1e-12`), recomputed here from
 /// runs of the engine alone.
 #[test]
@@ -564,11 +565,14 @@ fn a_ladder_reports_what_its_levels_run_alone_give() {
     let finest = levels[levels.len() - 1];
     assert_eq!(outcome.restitution, finest);
     let n = levels.len();
-    let order = ((levels[n - 3] - levels[n - 2]).abs() / (levels[n - 2] - finest).abs())
-        .log2()
-        .clamp(0.5, 1.0);
+    let observed = ((levels[n - 3] - levels[n - 2]).abs() / (levels[n - 2] - finest).abs()).log2();
+    let order = observed.clamp(0.5, 1.0);
+    let gain = |j: usize| match observed > 3.0 {
+        true => 1.0,
+        false => 2f64.powf(j as f64 * order) - 1.0,
+    };
     let refined = (1..=4.min(n - 1))
-        .map(|j| (finest - levels[n - 1 - j]).abs() / (2f64.powf(j as f64 * order) - 1.0))
+        .map(|j| (finest - levels[n - 1 - j]).abs() / gain(j))
         .fold(0.0, f64::max);
     let mut scene = rod.scene().clone();
     scene.layers[0].modulus *= 1.0 + 1e-12;
