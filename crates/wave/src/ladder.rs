@@ -118,7 +118,7 @@ fn merge_check(
     };
     let shared = match off_lattice {
         Some(e) => format!(
-            "; this level and the one before it decided their contacts at the same instants, a separation at a lattice point both hold, so a level on a lattice {OFF_LATTICE:.3} times as fine, which holds none of their points, was run: its difference times {OFF_LATTICE_GAIN:.2} ({off:.1e}; its e {e:.10})"
+            "; this level and the one before it decided their contacts at the same instants, a separation at a lattice point both hold, so a level on a lattice {OFF_LATTICE:.3} times as coarse, which holds none of their points, was run: its difference times {OFF_LATTICE_GAIN:.2} ({off:.1e}; its e {e:.10})"
         ),
         None => String::new(),
     };
@@ -451,7 +451,7 @@ impl Level {
         let mut check = merge_check(levels, &runs, off_lattice, p, l, used);
         if self.shared && off_lattice.is_none() {
             check.method.push_str(&format!(
-                "; this level and the one before it decided their contacts at the same instants, a separation at a lattice point both hold, and the level on a lattice {OFF_LATTICE:.3} times as fine that would measure it did not finish within {max} events: the estimate may be low"
+                "; this level and the one before it decided their contacts at the same instants, a separation at a lattice point both hold, and the level on a lattice {OFF_LATTICE:.3} times as coarse that would measure it did not finish within {max} events: the estimate may be low"
             ));
             check.converging = false;
         }

@@ -540,8 +540,8 @@ fn slowly_converging_levels_widen_the_bound() {
 /// (exact: `0.0323243`), a point that every level's lattice holds, so the
 /// levels agree to `1e-12`: the bound was `8.5e-10` with `e` `4.3e-7` off
 /// (505 bounds), until a level on a lattice that shares none of their
-/// points measured it (`crates/wave/src/ladder/shared.rs`). That level's
-/// `e` is `0.9901811722`.
+/// points measured it (`crates/wave/src/ladder/shared.rs`): on a lattice
+/// `2^(1/2)` times as coarse, `e` is `0.9901782070`.
 #[test]
 fn a_separation_on_a_shared_lattice_point_is_within_the_bound() {
     let rod = Scene::elastic_stack(
