@@ -19,6 +19,20 @@ fn bound(o: &Outcome) -> f64 {
         .expect("the exact engine always reports a bound")
 }
 
+/// Asserts that the merged outcome `o` lies within its bound (and the
+/// exact run's own) of the exact run `x`, and says how far it lies.
+fn assert_within_bound_of_exact(o: &Outcome, x: &Outcome) {
+    let d = (o.restitution - x.restitution).abs();
+    eprintln!(
+        "e = {:.10} ± {:.1e}, exact {:.10}: {:.2} of the bound",
+        o.restitution,
+        bound(o),
+        x.restitution,
+        d / bound(o)
+    );
+    assert!(d <= bound(o) + bound(x), "{o:?}\n{x:?}");
+}
+
 /// Random layered rods, the kind whose fronts multiply (DESIGN.md §6: five
 /// or six layers do so even at transit-time ratios of 20-250), must finish
 /// with the default settings and land within their reported bound of the
@@ -560,15 +574,7 @@ fn a_separation_on_a_shared_lattice_point_is_within_the_bound() {
         "the case: the levels share the separation's lattice point ({method})"
     );
     let x = exact_run(&rod, 8_000_000, true).expect("the exact run fits 8e6 events");
-    let d = (o.restitution - x.restitution).abs();
-    eprintln!(
-        "e = {:.10} ± {:.1e}, exact {:.10}: {:.2} of the bound",
-        o.restitution,
-        bound(&o),
-        x.restitution,
-        d / bound(&o)
-    );
-    assert!(d <= bound(&o) + bound(&x), "{o:?}\n{x:?}");
+    assert_within_bound_of_exact(&o, &x);
 }
 
 /// Levels that agree by chance: a stack of real materials
@@ -599,13 +605,5 @@ fn levels_agreeing_by_chance_keep_the_bound() {
         est.merged_observed_order
     );
     let x = exact_run(&rod, 40_000_000, true).expect("the exact run fits 4e7 events");
-    let d = (o.restitution - x.restitution).abs();
-    eprintln!(
-        "e = {:.10} ± {:.1e}, exact {:.10}: {:.2} of the bound",
-        o.restitution,
-        bound(&o),
-        x.restitution,
-        d / bound(&o)
-    );
-    assert!(d <= bound(&o) + bound(&x), "{o:?}\n{x:?}");
+    assert_within_bound_of_exact(&o, &x);
 }
