@@ -51,6 +51,24 @@ fn num(v: f64) -> String {
     }
 }
 
+/// What a chain's `e` is known to within: for a ladder, its distance from
+/// the `N -> infinity` limit and that limit's estimate (the outcome's
+/// `error_bound`); for one chain, that nothing measures its distance from
+/// the continuum. `None` for the other engines.
+fn chain_error_line(o: &Outcome) -> Option<String> {
+    if o.engine != impact_model::EngineKind::Chain {
+        return None;
+    }
+    Some(match (&o.extrapolation, o.error_bound) {
+        (Some(x), Some(bound)) => format!(
+            "|e - e(N -> infinity)| <= {bound:.1e}  (this chain {:.1e} from the limit, the limit's estimate {:.1e})",
+            (o.restitution - x.value).abs(),
+            x.error
+        ),
+        _ => "not estimated: one chain is its own model (its distance from N -> infinity: drop --n on a viscous scene, or --engine wave on an elastic one)".to_string(),
+    })
+}
+
 /// The readable summary of one run.
 pub fn summary(title: &str, o: &Timed<Outcome>) -> String {
     let mut s = String::new();
@@ -136,6 +154,9 @@ pub fn summary(title: &str, o: &Timed<Outcome>) -> String {
                 parts.join(", ")
             }
         );
+    }
+    if let Some(line) = chain_error_line(o).filter(|_| o.error_estimate.is_none()) {
+        let _ = writeln!(s, "  error bound          {line}");
     }
     if let Some(v) = o.restitution_from_velocity {
         let _ = writeln!(s, "  e from mean velocity {v:.12}");

@@ -150,6 +150,9 @@ try {
   const viscousApi = await (await fetch(`${url}api/run`, { method: "POST", body: JSON.stringify(viscous) })).json();
   check("a viscous scene runs on the chain, as the API does", (await page.textContent("#n-e")) === viscousApi.restitution.toFixed(12),
     `${await page.textContent("#n-e")} vs ${viscousApi.restitution}`);
+  check("its error bound is the chain's distance from N -> infinity, shown",
+    viscousApi.error_bound > 0 && (await page.textContent("#n-err")) === Number(viscousApi.error_bound).toExponential(1),
+    `${await page.textContent("#n-err")} vs ${viscousApi.error_bound}`);
   // a run can be cancelled; a run that ends before the click (a fast chain)
   // is no answer either way, so another edit starts another one
   let cancelled = false;

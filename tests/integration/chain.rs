@@ -212,10 +212,22 @@ fn a_viscous_run_extrapolates_to_the_continuum_by_default() {
     assert!(error > 0.0 && error < 1e-3, "{x}");
     // the correction goes the way the chains converge
     assert!((value - values[2]) * (values[2] - values[1]) > 0.0, "{x}");
+    // `restitution` is the finest chain's, and its bound reaches the limit
+    // and the limit's own estimate beyond it
+    let bound = v["error_bound"].as_f64().unwrap();
+    assert!(
+        bound >= (value - values[2]).abs() + 0.99 * error,
+        "{bound} {x}"
+    );
+    assert!(
+        bound <= (value - values[2]).abs() + 1.01 * error,
+        "{bound} {x}"
+    );
     let out = impact(&args[..args.len() - 1]);
     let text = stdout(&out);
     assert!(text.contains("(N -> infinity, Richardson)"), "{text}");
     assert!(text.contains("observed order in N"), "{text}");
+    assert!(text.contains("|e - e(N -> infinity)| <= "), "{text}");
     // an elastic top keeps sharp fronts: said, and the estimate widened
     let elastic_top = json(&[
         "run", "--x", "0.5", "--alpha", "0.3", "--tau1", "0.08", "--json",
@@ -228,6 +240,15 @@ fn a_viscous_run_extrapolates_to_the_continuum_by_default() {
         "run", "--x", "0.5", "--alpha", "0.3", "--tau1", "0.08", "--n", "300", "--json",
     ]);
     assert!(one.get("extrapolation").is_none());
+    // one chain's distance from the continuum is not measured, and says so
+    assert!(one["error_bound"].is_null(), "{one}");
+    let text = stdout(&impact(&[
+        "run", "--x", "0.5", "--alpha", "0.3", "--tau1", "0.08", "--n", "300",
+    ]));
+    assert!(
+        text.contains("error bound          not estimated"),
+        "{text}"
+    );
     let bad = impact(&[
         "run", "--x", "0.5", "--alpha", "0.3", "--tau1", "0.08", "--n", "300", "--target", "1e-4",
     ]);

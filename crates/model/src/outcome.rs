@@ -182,7 +182,11 @@ pub struct Outcome {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub truncation: Option<Truncation>,
     /// How far `restitution` may be from the model's exact value (the
-    /// estimate's `bound`), when the engine can say.
+    /// estimate's `bound`), when the engine can say. For a chain ladder
+    /// (`extrapolation` set) the model is the chain's `N -> infinity` limit
+    /// and the bound is the finest chain's distance from the extrapolated
+    /// limit plus the extrapolation's error; one chain alone (`None`) is its
+    /// own model, whose distance from the continuum nothing here measures.
     #[serde(default)]
     pub error_bound: Option<f64>,
     /// The parts of that estimate.

@@ -58,6 +58,15 @@ pub struct ChainLimit {
     pub target_met: Option<bool>,
 }
 
+/// How far the finest chain's `e` may be from the continuum's: its distance
+/// from the extrapolated limit plus the limit's own estimate. Why: the
+/// outcome's `restitution` (like its `t_c` and `N_b`) is the finest chain's,
+/// and its `error_bound` must say how far that figure is from the model the
+/// ladder answers for, `N -> infinity`, not how far the extrapolation is.
+fn finest_chain_error(finest: f64, limit: &Extrapolation) -> f64 {
+    (finest - limit.value).abs() + limit.error
+}
+
 /// Runs the chain of `config` (its `masses` ignored) at growing sizes and
 /// extrapolates `e`. The three first sizes run in parallel; the recording
 /// asked for in `config` is kept for the finest run only.
@@ -106,6 +115,7 @@ pub fn chain_limit(
         }
     }
     let target_met = settings.target.map(|t| x.error <= t);
+    outcome.error_bound = Some(finest_chain_error(outcome.restitution, &x));
     outcome.extrapolation = Some(x);
     Ok(ChainLimit {
         outcome,

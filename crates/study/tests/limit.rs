@@ -39,17 +39,14 @@ fn homogeneous(tau: f64) -> Rod {
     scene.validate().unwrap()
 }
 
-/// The default ladder's estimate (N = 250, 500, 1000 and Richardson).
-fn default_ladder(rod: &Rod) -> Extrapolation {
-    let ladder = chain_limit(rod, &ChainConfig::default(), &LimitSettings::default()).unwrap();
-    ladder.outcome.extrapolation.unwrap()
-}
-
 /// The default ladder on `rod` against the limit of chains of the
 /// `reference` sizes: the ladder's interval must cover the gap between the
-/// two (both tests of the estimate ask this). Returns the estimate and the gap.
+/// two, and the outcome's `error_bound` the gap between its finest chain
+/// (the outcome's `restitution`) and that limit (both tests of the estimate
+/// ask this). Returns the estimate and the gap.
 fn ladder_covers_the_large_n_limit(rod: &Rod, reference: [usize; 3]) -> (Extrapolation, f64) {
-    let x = default_ladder(rod);
+    let ladder = chain_limit(rod, &ChainConfig::default(), &LimitSettings::default()).unwrap();
+    let x = ladder.outcome.extrapolation.clone().unwrap();
     let (limit, limit_error) = large_n_limit(rod, reference);
     let gap = (x.value - limit).abs();
     eprintln!(
@@ -60,6 +57,14 @@ fn ladder_covers_the_large_n_limit(rod: &Rod, reference: [usize; 3]) -> (Extrapo
         gap <= x.error + limit_error,
         "the estimate {:.1e} misses the gap {gap:.1e}",
         x.error
+    );
+    let finest = ladder.outcome.restitution;
+    let bound = ladder.outcome.error_bound.unwrap();
+    let finest_gap = (finest - limit).abs();
+    eprintln!("finest chain {finest:.7} +- {bound:.1e}; gap {finest_gap:.1e}");
+    assert!(
+        finest_gap <= bound + limit_error,
+        "the finest chain's bound {bound:.1e} misses its gap {finest_gap:.1e}"
     );
     (x, gap)
 }
@@ -102,7 +107,8 @@ fn an_elastic_layer_is_flagged_and_the_wider_estimate_holds() {
     let mut scene = Bilayer::new(0.3, 0.005).unwrap().scene();
     scene.layers[1].relaxation_time = Some(2.0);
     let rod = scene.validate().unwrap();
-    let x = default_ladder(&rod);
+    let ladder = chain_limit(&rod, &ChainConfig::default(), &LimitSettings::default()).unwrap();
+    let x = ladder.outcome.extrapolation.clone().unwrap();
     let finest = e_at(&rod, 4000);
     eprintln!(
         "ladder {:.7} +- {:.1e} ({:?}); N = 4000: {finest:.7}",
@@ -110,6 +116,13 @@ fn an_elastic_layer_is_flagged_and_the_wider_estimate_holds() {
     );
     assert!(!x.clean && x.note.is_some(), "{x:?}");
     assert!((x.value - finest).abs() <= x.error, "{x:?} vs {finest}");
+    // the N = 1000 chain's own bound covers the chain four times as fine
+    let bound = ladder.outcome.error_bound.unwrap();
+    assert!(
+        (ladder.outcome.restitution - finest).abs() <= bound,
+        "{} +- {bound:.1e} vs {finest}",
+        ladder.outcome.restitution
+    );
 }
 
 /// `--target` doubles N until the estimate is below it.

@@ -193,7 +193,7 @@ export function showNumbers(o) {
   $("n-n1").textContent = o.n1 === null || o.n1 === undefined ? "–" : fmt(o.n1, 6);
   $("n-nb").textContent = o.bounces;
   $("n-sep").textContent = o.separations;
-  $("n-err").textContent = o.error_bound === undefined ? "–" : Number(o.error_bound).toExponential(1);
+  $("n-err").textContent = o.error_bound === undefined || o.error_bound === null ? "–" : Number(o.error_bound).toExponential(1);
   $("n-events").textContent = o.events === undefined || o.events === null ? (o.steps ? `${o.steps} steps` : "–") : o.events.toLocaleString();
   $("n-engine").textContent = o.engine;
   $("n-law").textContent = o.wall_contact;
