@@ -69,6 +69,27 @@ fn chain_error_line(o: &Outcome) -> Option<String> {
     })
 }
 
+/// What would take a merged ladder a level finer, the check its bound
+/// asks for when its levels are not yet seen converging.
+fn finer_level(stop: Option<impact_model::LadderStop>) -> String {
+    use impact_model::LadderStop;
+    match stop {
+        Some(LadderStop::Budget { needed }) => {
+            format!("--event-budget {needed} or more runs the next level, which checks it")
+        }
+        Some(LadderStop::Target) => {
+            "the bound met --target: a smaller one, with the --event-budget for it, runs the next level".to_string()
+        }
+        Some(LadderStop::EventLimit) => {
+            "the next level needs a larger --max-events".to_string()
+        }
+        Some(LadderStop::FinestLattice) => {
+            "the ladder reached its finest lattice; an exact run (--resolution exact) checks it".to_string()
+        }
+        None => "a smaller --merge-window checks it".to_string(),
+    }
+}
+
 /// The readable summary of one run.
 pub fn summary(title: &str, o: &Timed<Outcome>) -> String {
     let mut s = String::new();
@@ -134,8 +155,10 @@ pub fn summary(title: &str, o: &Timed<Outcome>) -> String {
             // (such bounds were 3.4 to 15 times too small on 3 of the 11
             // fast-bottom survey rods that said so, against finer ladders:
             // README)
-            let check =
-                "the merged estimate may be low, even tenfold (a larger --event-budget checks it)";
+            let check = format!(
+                "the merged estimate may be low, even tenfold ({})",
+                finer_level(est.ladder_stop)
+            );
             parts.push(match est.merged_observed_order {
                 Some(order) => format!(
                     "the merged levels show order {order:.1}, below {}: {check}",

@@ -251,11 +251,16 @@ fn a_merged_outcome_says_whether_its_levels_converge() {
         let out = impact(&["run", path]);
         assert!(out.status.success(), "{}", stderr(&out));
         assert_eq!(stdout(&out).contains(warning), !converging);
-        // and says how to check it
-        assert_eq!(
-            stdout(&out).contains("a larger --event-budget checks it"),
-            !converging
-        );
+        // and says how to check it: the budget that runs the next level,
+        // where the budget stopped the ladder
+        let stop = &est["ladder_stop"];
+        if let Some(needed) = stop["budget"]["needed"].as_u64() {
+            let advice = format!("--event-budget {needed} or more runs the next level");
+            assert_eq!(stdout(&out).contains(&advice), !converging, "{stop}");
+            assert!(needed > v["events"].as_u64().unwrap(), "{v}");
+        } else {
+            assert!(stop.is_string(), "a ladder's stop is said: {est}");
+        }
         said[k] = !converging;
     }
     // the first rod's differences grow, the second's shrink

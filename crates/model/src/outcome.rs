@@ -60,6 +60,28 @@ pub struct Truncation {
     pub merged_fronts: u64,
 }
 
+/// Why a merged ladder stopped refining. Why it matters: a bound whose
+/// levels are not yet seen converging may be low, and what checks it (a
+/// finer level) depends on what stopped the ladder: a budget of work that
+/// is too small, a target already met, or the limit on one run's events.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LadderStop {
+    /// The bound met the target.
+    Target,
+    /// The next level would have taken the ladder's work past its budget;
+    /// a budget of at least `needed` (events) runs it.
+    Budget {
+        /// The smallest budget under which the ladder runs the next level.
+        needed: u64,
+    },
+    /// The next level would not fit one run's event limit, or did not
+    /// finish within it.
+    EventLimit,
+    /// The lattice reached the finest the ladder goes to.
+    FinestLattice,
+}
+
 /// How far the reported restitution may be from the model's exact value, and
 /// where that uncertainty comes from. Each part is an estimate the engine
 /// can defend: a first-order bound, a measured difference between two runs,
@@ -103,6 +125,11 @@ pub struct ErrorEstimate {
     /// both differences are non-zero.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub merged_observed_order: Option<f64>,
+    /// Why a merged ladder reported the level it did, and so what would
+    /// take it a level finer (`None` for runs that merged nothing and for
+    /// a lattice fixed by the caller).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ladder_stop: Option<LadderStop>,
     /// Blocks of fast layers a merged run answered by their traced
     /// response instead of following each of their fronts: the first and
     /// last layer of each, counted from 0 at the bottom (as the

@@ -13,7 +13,7 @@ use crate::engine::WaveEngine;
 use crate::error::WaveError;
 use crate::solve::{LadderProgress, run};
 use crate::twins::{NUDGES, further_twins, needs_further, nudged};
-use impact_model::Rod;
+use impact_model::{LadderStop, Rod};
 use shared::{OFF_LATTICE, OFF_LATTICE_GAIN, shared_decisions};
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -29,6 +29,8 @@ pub(crate) struct MergeCheck {
     /// Whether those levels look converging (see [`converging`]).
     pub(crate) converging: bool,
     pub(crate) method: String,
+    /// Why the ladder reported this level (`None` on a fixed lattice).
+    pub(crate) stop: Option<LadderStop>,
 }
 
 /// The coarsest spacing a ladder starts from: a fraction of each lane's
@@ -128,6 +130,7 @@ fn merge_check(
         bound: 2.0 * refined.max(perturbed).max(off),
         order,
         converging,
+        stop: None,
         method: format!(
             "merged: twice the {} of the refinement estimate ({refined:.1e}: the largest |e - e(2^j as coarse)| over {} coarser lattices{}){}{chaos}{}; lattice spacings {p:.3e} of each transit, {l:.1e} of the longest ({used} units of work in all: loop iterations, and the fronts and lattice cells of leaps){seen}{shared}",
             if off_lattice.is_some() {
@@ -206,7 +209,7 @@ pub(crate) fn fixed_lattice(
         // the coarser runs are not kept to compare their contacts
         shared: false,
     };
-    level.checked(rod, config, max, "", &|_| {})
+    level.checked(rod, config, max, None, "", &|_| {})
 }
 
 /// Merged runs from [`LADDER_START`] down by halves, each with its
@@ -308,7 +311,8 @@ pub(crate) fn ladder(
         used: used + twin.map_or(0, |(_, steps)| steps),
     };
     if let Some(note) = reported {
-        return second.checked(rod, config, max, &note, observe);
+        let stop = Some(LadderStop::EventLimit);
+        return second.checked(rod, config, max, stop, &note, observe);
     }
     let mut coarser = second;
     let (mut p, mut l) = (p1 / 2.0, l1 / 2.0);
@@ -327,7 +331,8 @@ pub(crate) fn ladder(
                     "; the next level did not finish within {max} events, so the estimate rests on {} levels",
                     levels.len()
                 );
-                return coarser.checked(rod, config, max, &note, observe);
+                let stop = Some(LadderStop::EventLimit);
+                return coarser.checked(rod, config, max, stop, &note, observe);
             }
             (Err(e), _) | (_, Err(e)) => return Err(e),
         };
@@ -350,7 +355,21 @@ pub(crate) fn ladder(
         });
         // events about double with each halving
         let next_cost = 2 * (fine.steps() + twin.steps());
-        let done = check.bound <= target || used + next_cost > budget || p / 2.0 < FINEST;
+        // Whatever else stops it, a budget is named only where it alone
+        // did: one of `needed` then runs the next level.
+        let stop = if check.bound <= target {
+            Some((LadderStop::Target, String::new()))
+        } else if p / 2.0 < FINEST {
+            Some((LadderStop::FinestLattice, String::new()))
+        } else if too_long(&fine) {
+            let note = past_the_limit(2 * fine.steps(), max, levels.len());
+            Some((LadderStop::EventLimit, note))
+        } else if used + next_cost > budget {
+            let needed = used + next_cost;
+            Some((LadderStop::Budget { needed }, String::new()))
+        } else {
+            None
+        };
         let level = Level {
             shared: shared_decisions(&fine, &coarser.engine),
             engine: fine,
@@ -359,12 +378,8 @@ pub(crate) fn ladder(
             lattice: (p, l),
             used,
         };
-        if done {
-            return level.checked(rod, config, max, "", observe);
-        }
-        if too_long(&level.engine) {
-            let note = past_the_limit(2 * level.engine.steps(), max, levels.len());
-            return level.checked(rod, config, max, &note, observe);
+        if let Some((stop, note)) = stop {
+            return level.checked(rod, config, max, Some(stop), &note, observe);
         }
         coarser = level;
         p /= 2.0;
@@ -401,12 +416,14 @@ impl Level {
     /// The level as reported: its check completed by its twin if it has
     /// none yet, and by the further twins where that twin says they may
     /// decide the bound (see [`needs_further`]; `observe` is told before
-    /// they run), and `note` (why the ladder stopped) added to its method.
+    /// they run), and why the ladder stopped (`stop`, and `note` added to
+    /// its method).
     fn checked(
         self,
         rod: &Rod,
         config: &WaveConfig,
         max: u64,
+        stop: Option<LadderStop>,
         note: &str,
         observe: &dyn Fn(LadderProgress),
     ) -> Result<(WaveEngine, MergeCheck), WaveError> {
@@ -461,6 +478,7 @@ impl Level {
             ));
         }
         check.method.push_str(note);
+        check.stop = stop;
         Ok((self.engine, check))
     }
 }

@@ -158,6 +158,7 @@ pub fn solve_observed(
         estimate.merged = check.bound;
         estimate.merged_converging = Some(check.converging);
         estimate.merged_observed_order = check.order;
+        estimate.ladder_stop = check.stop;
         parts.push(check.method.clone());
         for (a, b) in fine.answered_blocks() {
             estimate.answered_blocks.push([a, b]);

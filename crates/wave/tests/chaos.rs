@@ -113,3 +113,49 @@ fn a_chattering_rods_bound_covers_its_nudged_runs() {
         "e = {e} +- {bound:e} covers {covered} of {others:?}"
     );
 }
+
+/// A ladder stopped by its budget of work names the budget that runs its
+/// next level (`LadderStop::Budget`), which is what a bound whose levels
+/// are not yet seen converging asks to be checked with: one event less
+/// reports the same level to the bit, the budget named one level more.
+/// (The command line's advice was a larger budget, whatever stopped the
+/// ladder: on a stack of real materials, ten times the default budget
+/// changed nothing.)
+#[test]
+fn a_budget_stop_names_the_budget_that_runs_the_next_level() {
+    use impact_model::LadderStop;
+    let rod = survey_rod_33();
+    let solve = |budget_events: u64| {
+        let config = WaveConfig {
+            resolution: Resolution::Auto {
+                exact_events: 200_000,
+                budget_events,
+                target: 1e-12,
+            },
+            ..WaveConfig::default()
+        };
+        let levels = Cell::new(0);
+        let observe = |p: LadderProgress| {
+            if let LadderProgress::LevelDone { level, .. } = p {
+                levels.set(level);
+            }
+        };
+        let o = solve_observed(&rod, &config, &observe).unwrap().outcome;
+        let stop = o.error_estimate.as_ref().and_then(|e| e.ladder_stop);
+        (o.restitution, levels.get(), stop)
+    };
+    // the three levels every ladder runs, then a budget of one event stops it
+    let (e, levels, stop) = solve(1);
+    eprintln!("budget 1: e {e:.10}, {levels} levels, {stop:?}");
+    assert_eq!(levels, 3);
+    let Some(LadderStop::Budget { needed }) = stop else {
+        panic!("stopped by {stop:?}, not the budget");
+    };
+    let (e_short, levels_short, stop_short) = solve(needed - 1);
+    assert_eq!((e_short.to_bits(), levels_short), (e.to_bits(), levels));
+    assert_eq!(stop_short, stop);
+    let (e_next, levels_next, stop_next) = solve(needed);
+    eprintln!("budget {needed}: e {e_next:.10}, {levels_next} levels, {stop_next:?}");
+    assert_eq!(levels_next, levels + 1);
+    assert_ne!(stop_next, stop);
+}
