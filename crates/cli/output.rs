@@ -78,7 +78,7 @@ fn finer_level(stop: Option<impact_model::LadderStop>) -> String {
             format!("--event-budget {needed} or more runs the next level, which checks it")
         }
         Some(LadderStop::Target) => {
-            "the bound met --target: a smaller one, with the --event-budget for it, runs the next level".to_string()
+            "the ladder stopped at --target: a smaller one, with the --event-budget for it, runs the next level".to_string()
         }
         Some(LadderStop::EventLimit) => {
             "the next level needs a larger --max-events".to_string()

@@ -150,6 +150,10 @@ try {
   const viscousApi = await (await fetch(`${url}api/run`, { method: "POST", body: JSON.stringify(viscous) })).json();
   check("a viscous scene runs on the chain, as the API does", (await page.textContent("#n-e")) === viscousApi.restitution.toFixed(12),
     `${await page.textContent("#n-e")} vs ${viscousApi.restitution}`);
+  check("and its extrapolation to N -> infinity, as the API gives it",
+    (await page.textContent("#n-limit")).startsWith(viscousApi.extrapolation.value.toFixed(9)) && !(await page.isHidden("#n-limit-row")),
+    `${await page.textContent("#n-limit")} vs ${viscousApi.extrapolation.value}`);
+  await page.locator("#point-panel").screenshot({ path: join(out, "explorer-viscous.png") });
   check("its error bound is the chain's distance from N -> infinity, shown",
     viscousApi.error_bound > 0 && (await page.textContent("#n-err")) === Number(viscousApi.error_bound).toExponential(1),
     `${await page.textContent("#n-err")} vs ${viscousApi.error_bound}`);

@@ -197,6 +197,13 @@ export function showNumbers(o) {
   $("n-events").textContent = o.events === undefined || o.events === null ? (o.steps ? `${o.steps} steps` : "–") : o.events.toLocaleString();
   $("n-engine").textContent = o.engine;
   $("n-law").textContent = o.wall_contact;
+  // a viscous run answers for the continuum: its chains' extrapolation,
+  // beside the finest chain's figures above (as `impact run` prints them)
+  const x = o.extrapolation;
+  $("n-limit-row").hidden = !x;
+  $("n-limit").textContent = x
+    ? `${fmt(x.value, 9)} ± ${Number(x.error).toExponential(1)} (Richardson over chains of ${x.sizes.join(", ")}; the figures above are the chain of ${x.sizes[x.sizes.length - 1]})`
+    : "";
   $("n-contacts").textContent = o.contacts.slice(0, 8).map((c) => `[${c[0].toFixed(4)}, ${c[1].toFixed(4)}]`).join(" ") + (o.contacts.length > 8 ? ` … (${o.contacts.length})` : "");
 }
 
