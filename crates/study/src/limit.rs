@@ -101,8 +101,12 @@ pub fn chain_limit(
     let mut values = vec![first.restitution, second.restitution, outcome.restitution];
     // elastic layers keep sharp fronts: no clean order in N
     let sharp_fronts = (0..rod.layers().len()).any(|i| rod.relaxation_time(i) == 0.0);
+    // e <= 1: the rod leaves with no more energy than it brought (springs
+    // store it, dashpots take it); past 1 the chains are not yet asymptotic
     let extrapolation = |sizes: &[usize], values: &[f64]| -> Extrapolation {
-        extrapolate(sizes, values, sharp_fronts).expect("three ascending sizes")
+        extrapolate(sizes, values, sharp_fronts)
+            .expect("three ascending sizes")
+            .at_most(1.0, "energy")
     };
     let mut x = extrapolation(&sizes, &values);
     if let Some(target) = settings.target {

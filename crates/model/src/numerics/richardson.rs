@@ -100,6 +100,35 @@ pub fn extrapolate(sizes: &[usize], values: &[f64], sharp_fronts: bool) -> Optio
     Some(out)
 }
 
+impl Extrapolation {
+    /// The extrapolation of a quantity known to be at most `ceiling`
+    /// (`what` names the law that says so): a value past it says the sizes
+    /// are not yet asymptotic, so the estimate is marked not clean and
+    /// widened as any unclear one is, and at least to the ceiling.
+    pub fn at_most(mut self, ceiling: f64, what: &str) -> Self {
+        if self.value <= ceiling {
+            return self;
+        }
+        let v = &self.values;
+        let change = v.windows(2).rev().take(2).map(|w| (w[1] - w[0]).abs());
+        let change = change.fold(0.0, f64::max);
+        self.error = self
+            .error
+            .max(SAFETY_UNCLEAR * change)
+            .max(self.value - ceiling);
+        let why = format!(
+            "the extrapolated value {:.6} is above {ceiling}, which {what} forbids",
+            self.value
+        );
+        self.note = Some(match self.note.take() {
+            Some(note) => format!("{why}; {note}"),
+            None => why,
+        });
+        self.clean = false;
+        self
+    }
+}
+
 /// One Richardson step: the limit of `e(N) = e_inf + C N^-p` from its
 /// values `coarse` at `N` and `fine` at `ratio N`,
 /// `fine + (fine - coarse) / (ratio^p - 1)`.
@@ -133,6 +162,30 @@ pub fn self_consistent_order(n: [f64; 3], q: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Values rising towards a ceiling too fast for their order: the
+    /// extrapolation passes it, is marked and widened to reach back under
+    /// it; one under the ceiling is left as it was.
+    #[test]
+    fn a_limit_past_its_ceiling_is_not_clean() {
+        let sizes = [250, 500, 1000];
+        let x = extrapolate(&sizes, &[0.98, 0.995, 0.9995], false).unwrap();
+        assert!(x.value > 1.0, "{x:?}");
+        let capped = x.clone().at_most(1.0, "energy");
+        assert!(!capped.clean);
+        assert!(
+            capped
+                .note
+                .as_deref()
+                .unwrap()
+                .contains("which energy forbids")
+        );
+        assert!(capped.value - capped.error <= 1.0);
+        assert!(capped.error >= 3.0 * 0.015 - 1e-12, "{capped:?}");
+        let under = extrapolate(&sizes, &[0.9, 0.95, 0.97], false).unwrap();
+        assert!(under.value < 1.0);
+        assert_eq!(under.clone().at_most(1.0, "energy"), under);
+    }
 
     /// `e(N) = 0.3 + 0.7 N^-p`: the order and the limit come back, and the
     /// estimate covers the true error.
