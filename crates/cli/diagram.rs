@@ -3,8 +3,8 @@
 use crate::args::{DiagramArgs, DiagramEngine};
 use crate::input;
 use crate::output::write_atomically;
-use impact_diagram::{Diagram, DiagramOptions, chain_run, exact_run, page};
-use impact_model::Scene;
+use impact_diagram::{Diagram, DiagramOptions, chain_run, chain_run_within, exact_run, page};
+use impact_model::{Outcome, Scene};
 use impact_wave::WaveError;
 use std::io::Write;
 
@@ -55,6 +55,17 @@ pub fn diagram(a: DiagramArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Where the default window, `[0, 1.12 t_c]`, would hold under a
+/// fifteenth of a chain's frames spread over `[0, until]`: the end of the
+/// window to sample alone. A stiff base that rebounds alone ends its
+/// contact far sooner than the layers' transits: steel under a gel, in
+/// reduced units, drew no frame at all.
+fn shown_window_alone(a: &DiagramArgs, outcome: &Outcome, until: f64) -> Option<f64> {
+    let window = 1.12 * outcome.contact_time;
+    (a.t_end.is_none() && window > 0.0 && window < until / 15.0)
+        .then_some(1.15 * outcome.contact_time)
+}
+
 /// Runs what `a` asks for and lays out the figure, on `given` instead of
 /// the scene `a` names when the caller already holds one (the explorer);
 /// writes nothing.
@@ -93,7 +104,10 @@ pub fn build(a: &DiagramArgs, given: Option<Scene>) -> anyhow::Result<(Diagram, 
         let until = a
             .t_end
             .unwrap_or(3.0 * rod.transit_times().iter().sum::<f64>());
-        let run = chain_run(&rod, a.masses, until).map_err(crate::flags::chain)?;
+        let mut run = chain_run(&rod, a.masses, until).map_err(crate::flags::chain)?;
+        if let Some(within) = shown_window_alone(a, &run.outcome, until) {
+            run = chain_run_within(&rod, a.masses, within).map_err(crate::flags::chain)?;
+        }
         (
             vec![(chain_label.clone(), run.picture)],
             run.outcome,
@@ -102,8 +116,11 @@ pub fn build(a: &DiagramArgs, given: Option<Scene>) -> anyhow::Result<(Diagram, 
     };
     if a.side_by_side {
         let until = a.t_end.unwrap_or(1.2 * outcome.end_time);
-        let chain = chain_run(&rod, a.masses, until).map_err(crate::flags::chain)?;
-        pictures.push((chain_label, chain.picture));
+        let chain = match shown_window_alone(a, &outcome, until) {
+            Some(within) => chain_run_within(&rod, a.masses, within),
+            None => chain_run(&rod, a.masses, until),
+        };
+        pictures.push((chain_label, chain.map_err(crate::flags::chain)?.picture));
     }
     let d = Diagram {
         title: format!(

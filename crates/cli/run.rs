@@ -100,6 +100,7 @@ pub fn compute(a: &RunArgs, given: Option<Scene>) -> anyhow::Result<Computed> {
     let chain_record = ChainRecord {
         wall_every: trace.then_some(16),
         raster: None,
+        record_until: None,
     };
     let masses = a.masses.unwrap_or(10_000);
     let engine = a

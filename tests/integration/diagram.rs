@@ -75,6 +75,42 @@ fn chain_and_side_by_side_diagrams() {
     assert!(stderr(&o).contains("--engine chain"));
 }
 
+/// A steel base under gel (in reduced units, so the steel's transit is
+/// `1.2e-4` of the gel's) rebounds alone after `2 t1`: the default window
+/// `[0, 1.12 t_c]` is a ten-thousandth of the `3 sum t_i` the chain's
+/// frames were spread over, and held none. The chain alone and beside the
+/// exact picture now sample that window with over a hundred frames.
+#[test]
+fn a_contact_far_shorter_than_the_transits_is_drawn() {
+    let dir = scratch("diagram-short-contact");
+    let scene = dir.join("steel-under-gel.json");
+    std::fs::write(
+        &scene,
+        r#"{"impact_speed": 1.0, "layers": [
+            {"material": "steel", "length": 0.6},
+            {"length": 0.4, "modulus": 0.05, "density": 1.0},
+            {"length": 0.5, "modulus": 0.05, "density": 1.0}]}"#,
+    )
+    .unwrap();
+    for extra in [["--engine", "chain"], ["--side-by-side", "--no-fronts"]] {
+        let out = dir.join("d.svg");
+        let mut args = vec!["diagram", scene.to_str().unwrap(), "--n", "400"];
+        args.extend(extra);
+        args.extend(["--out", out.to_str().unwrap()]);
+        let o = impact(&args);
+        assert!(o.status.success(), "{extra:?}: {}", stderr(&o));
+        let svg = std::fs::read_to_string(&out).unwrap();
+        assert!(!svg.contains("no chain frames"), "{extra:?}");
+        let frames: usize = svg
+            .split("chain field: ")
+            .nth(1)
+            .and_then(|rest| rest.split(' ').next())
+            .and_then(|n| n.parse().ok())
+            .expect("the chain's frame count");
+        assert!(frames > 100, "{extra:?}: {frames} frames in the window");
+    }
+}
+
 #[test]
 fn bad_diagram_input() {
     let dir = scratch("diagram-bad");

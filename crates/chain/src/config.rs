@@ -30,6 +30,11 @@ pub struct ChainRecord {
     /// Sample the strain field every this many steps, averaged into this many
     /// equal-height rows (for space-time pictures): `(every, rows)`.
     pub raster: Option<(u64, usize)>,
+    /// No wall samples or strain frames after this time: a picture of a
+    /// window much shorter than the run (a stiff base that rebounds alone)
+    /// samples its window finely without holding samples for the rest of
+    /// the run.
+    pub record_until: Option<f64>,
 }
 
 /// Which kernel steps a viscous chain. Both have the same `dt -> 0`

@@ -385,6 +385,9 @@ impl ChainEngine {
 
     fn record(&mut self) {
         let rec = self.config.record;
+        if rec.record_until.is_some_and(|until| self.t > until) {
+            return;
+        }
         if let Some(every) = rec.wall_every
             && self.steps.is_multiple_of(every.max(1))
         {

@@ -20,5 +20,5 @@ mod takeoff;
 pub use field::{ExactField, FieldError};
 pub use figure::{ChainPicture, Diagram, DiagramOptions, Picture};
 pub use html::page;
-pub use runs::{MAX_DRAWN_EVENTS, Run, chain_run, exact_run};
+pub use runs::{MAX_DRAWN_EVENTS, Run, chain_run, chain_run_within, exact_run};
 pub use takeoff::takeoff_path;

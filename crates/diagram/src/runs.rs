@@ -59,8 +59,24 @@ pub fn exact_run(rod: &Rod) -> Result<Run, WaveError> {
 }
 
 /// The chain of `masses`, with ~1500 raster frames of up to 200 rows over
-/// `[0, until]`.
+/// `[0, until]`, and on at that rate to the end of the run.
 pub fn chain_run(rod: &Rod, masses: usize, until: f64) -> Result<Run, ChainError> {
+    chain_frames(rod, masses, until, None)
+}
+
+/// [`chain_run`] with no frames or wall samples after `until`: a window
+/// far shorter than the run, sampled as finely, without samples for the
+/// rest of it.
+pub fn chain_run_within(rod: &Rod, masses: usize, until: f64) -> Result<Run, ChainError> {
+    chain_frames(rod, masses, until, Some(until))
+}
+
+fn chain_frames(
+    rod: &Rod,
+    masses: usize,
+    until: f64,
+    record_until: Option<f64>,
+) -> Result<Run, ChainError> {
     let probe = ChainEngine::new(
         rod,
         ChainConfig {
@@ -74,6 +90,7 @@ pub fn chain_run(rod: &Rod, masses: usize, until: f64) -> Result<Run, ChainError
         record: ChainRecord {
             wall_every: Some(every),
             raster: Some((every, 200.min(masses))),
+            record_until,
         },
         ..ChainConfig::default()
     };

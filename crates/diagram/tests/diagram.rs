@@ -42,6 +42,7 @@ fn chain_with_raster(rod: &Rod, masses: usize, raster: (u64, usize)) -> ChainEng
         record: ChainRecord {
             wall_every: None,
             raster: Some(raster),
+            record_until: None,
         },
         ..ChainConfig::default()
     };

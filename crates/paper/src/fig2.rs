@@ -28,6 +28,7 @@ fn run_one(tau: f64, masses: usize, law: WallContact) -> Result<Run, PaperError>
         record: ChainRecord {
             wall_every: Some(1),
             raster: None,
+            record_until: None,
         },
         ..ChainConfig::default()
     };
