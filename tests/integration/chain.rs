@@ -302,16 +302,7 @@ fn the_viscous_kernel_is_named_and_chosen_by_flag() {
 /// estimate back below 1.
 #[test]
 fn an_extrapolated_e_above_one_is_flagged() {
-    let dir = scratch("above-one");
-    let path = dir.join("steel-under-gel.json");
-    std::fs::write(
-        &path,
-        r#"{"impact_speed": 1.0, "layers": [
-            {"material": "steel", "length": 0.6},
-            {"length": 0.4, "modulus": 0.05, "density": 1.0},
-            {"length": 0.5, "modulus": 0.05, "density": 1.0, "restitution": 0.72}]}"#,
-    )
-    .unwrap();
+    let path = steel_under_gel(&scratch("above-one"), Some(0.72));
     let v = json(&["run", path.to_str().unwrap(), "--json"]);
     let x = &v["extrapolation"];
     let (value, error) = (x["value"].as_f64().unwrap(), x["error"].as_f64().unwrap());

@@ -83,15 +83,7 @@ fn chain_and_side_by_side_diagrams() {
 #[test]
 fn a_contact_far_shorter_than_the_transits_is_drawn() {
     let dir = scratch("diagram-short-contact");
-    let scene = dir.join("steel-under-gel.json");
-    std::fs::write(
-        &scene,
-        r#"{"impact_speed": 1.0, "layers": [
-            {"material": "steel", "length": 0.6},
-            {"length": 0.4, "modulus": 0.05, "density": 1.0},
-            {"length": 0.5, "modulus": 0.05, "density": 1.0}]}"#,
-    )
-    .unwrap();
+    let scene = steel_under_gel(&dir, None);
     for extra in [["--engine", "chain"], ["--side-by-side", "--no-fronts"]] {
         let out = dir.join("d.svg");
         let mut args = vec!["diagram", scene.to_str().unwrap(), "--n", "400"];

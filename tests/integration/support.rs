@@ -29,6 +29,23 @@ pub fn scratch(name: &str) -> PathBuf {
     dir
 }
 
+/// A steel base (by material, 0.6 long) under two layers of gel (modulus
+/// 0.05, density 1) in reduced units, written to `dir`: the steel's transit
+/// is `1.2e-4` of the gel's, so it rebounds alone. `top_restitution` makes
+/// the top layer viscous. Returns the scene's path.
+pub fn steel_under_gel(dir: &Path, top_restitution: Option<f64>) -> PathBuf {
+    let viscous = top_restitution.map_or(String::new(), |e| format!(", \"restitution\": {e}"));
+    let path = dir.join("steel-under-gel.json");
+    let scene = format!(
+        r#"{{"impact_speed": 1.0, "layers": [
+            {{"material": "steel", "length": 0.6}},
+            {{"length": 0.4, "modulus": 0.05, "density": 1.0}},
+            {{"length": 0.5, "modulus": 0.05, "density": 1.0{viscous}}}]}}"#
+    );
+    std::fs::write(&path, scene).unwrap();
+    path
+}
+
 /// A JSON array of numbers as a vector; anything else fails the test.
 pub fn numbers<T: serde::de::DeserializeOwned>(v: &serde_json::Value) -> Vec<T> {
     serde_json::from_value(v.clone())
