@@ -199,6 +199,7 @@ impl<R: Real> Group<R> {
             self.behind_kept.retain(|&(i, k, _)| {
                 R::of(k as f64) * spacing[i / 2] + layers[i / 2].transit_time >= end
             });
+            self.remask_behind_kept();
         }
         let mut n = 0;
         while n < self.exact.len() {

@@ -51,6 +51,7 @@ fn the_groups_fronts_are_the_loops_lanes_at_every_step() {
     let mut a = Tracer::<f64>::new(&rod, config(true, 0.2)).expect("a");
     let mut b = Tracer::<f64>::new(&rod, config(false, 0.2)).expect("b");
     let mut ticks = 0;
+    let mut behind_seen = 0;
     while a.stopped().is_none() && ticks < ticks_checked {
         // (a step's end, not the event that took the group over: the loop
         // may have taken other events at that instant first)
@@ -72,6 +73,17 @@ fn the_groups_fronts_are_the_loops_lanes_at_every_step() {
             let held = g.exact.iter().filter(|e| e.kept && e.lane == i).count();
             assert_eq!(held, g.kept[i], "tick {ticks} lane {i}: kept count");
         }
+        // (a deposit looks for a point behind a kept front only where the
+        // mask says: a point missing from it would be added to the wrong
+        // front)
+        for &(i, k, _) in &g.behind_kept {
+            assert_ne!(
+                g.behind_mask[i] & super::point_bit(k),
+                0,
+                "tick {ticks}: mask"
+            );
+        }
+        behind_seen += g.behind_kept.len();
         for i in 0..2 * g.top {
             let mut fa = Vec::new();
             g.give_back(i, &mut fa);
@@ -101,4 +113,8 @@ fn the_groups_fronts_are_the_loops_lanes_at_every_step() {
         }
     }
     assert_eq!(ticks, ticks_checked);
+    assert!(
+        behind_seen > 0,
+        "no point behind a kept front: the mask is not checked"
+    );
 }

@@ -101,6 +101,13 @@ impl<T: Copy> Fifo<T> {
         self.as_slice().get(i)
     }
 
+    /// The `i`-th oldest item, if held: one comparison (`i` is at most
+    /// `i64::MAX`, so `head + i` cannot overflow).
+    #[inline(always)]
+    pub fn get_mut(&mut self, i: usize) -> Option<&mut T> {
+        self.items.get_mut(self.head + i)
+    }
+
     #[inline(always)]
     pub fn push_back(&mut self, item: T) {
         self.items.push(item);

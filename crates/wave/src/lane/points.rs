@@ -21,10 +21,19 @@ impl<R: Real> LatticePoints<R> {
     /// within a step, so an emptied lane may first take a later birth.
     #[inline(always)]
     pub(crate) fn add(&mut self, k: i64, d: R) {
+        // (a held point found by one comparison, not two: 3 % of the
+        // instructions of seed 7's rod 20, whose trace is its time)
         match usize::try_from(k.wrapping_sub(self.base)) {
-            Ok(i) if i < self.points.len() => self.points[i] += d,
-            // the next point: the common case, a lane grows at its end
-            Ok(i) if i == self.points.len() && i > 0 => self.points.push_back(d),
+            Ok(i) => {
+                if let Some(x) = self.points.get_mut(i) {
+                    *x += d;
+                } else if i == self.points.len() && i > 0 {
+                    // the next point: the common case, a lane grows at its end
+                    self.points.push_back(d);
+                } else {
+                    self.add_outside(k, d);
+                }
+            }
             _ => self.add_outside(k, d),
         }
     }
