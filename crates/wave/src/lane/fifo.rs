@@ -101,11 +101,11 @@ impl<T: Copy> Fifo<T> {
         self.as_slice().get(i)
     }
 
-    /// The `i`-th oldest item, if held: one comparison (`i` is at most
-    /// `i64::MAX`, so `head + i` cannot overflow).
+    /// The `i`-th oldest item, if held: one comparison against the
+    /// vector (saturating, so no `i` can wrap onto a taken item).
     #[inline(always)]
     pub fn get_mut(&mut self, i: usize) -> Option<&mut T> {
-        self.items.get_mut(self.head + i)
+        self.items.get_mut(self.head.saturating_add(i))
     }
 
     #[inline(always)]
@@ -241,6 +241,12 @@ mod tests {
                         let i = (next() as usize) % deque.len();
                         assert_eq!(fifo[i], deque[i]);
                         assert_eq!(fifo.get(i), deque.get(i));
+                        assert_eq!(fifo.get_mut(i), deque.get_mut(i));
+                    }
+                    // (past the end, and far past it: nothing)
+                    let past = [deque.len(), usize::MAX - (r as usize % 4)];
+                    for i in past {
+                        assert_eq!(fifo.get_mut(i), None, "{i}");
                     }
                 }
             }
