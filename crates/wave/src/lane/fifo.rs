@@ -102,10 +102,15 @@ impl<T: Copy> Fifo<T> {
     }
 
     /// The `i`-th oldest item, if held: one comparison against the
-    /// vector (saturating, so no `i` can wrap onto a taken item).
+    /// vector. `i` is at most `isize::MAX` (a lane's offset from its first
+    /// point, an `i64` at or above zero), so `head + i` cannot overflow:
+    /// `head` is at most the vector's length, itself at most `isize::MAX`.
+    /// (A saturating or checked sum cost seed 7's rod 20 4 % more
+    /// instructions than the plain one, callgrind.)
     #[inline(always)]
     pub fn get_mut(&mut self, i: usize) -> Option<&mut T> {
-        self.items.get_mut(self.head.saturating_add(i))
+        debug_assert!(i <= isize::MAX as usize, "index {i} past isize::MAX");
+        self.items.get_mut(self.head + i)
     }
 
     #[inline(always)]
@@ -243,8 +248,9 @@ mod tests {
                         assert_eq!(fifo.get(i), deque.get(i));
                         assert_eq!(fifo.get_mut(i), deque.get_mut(i));
                     }
-                    // (past the end, and far past it: nothing)
-                    let past = [deque.len(), usize::MAX - (r as usize % 4)];
+                    // (past the end, and as far past it as an index goes:
+                    // nothing)
+                    let past = [deque.len(), isize::MAX as usize - (r as usize % 4)];
                     for i in past {
                         assert_eq!(fifo.get_mut(i), None, "{i}");
                     }
