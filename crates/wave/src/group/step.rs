@@ -196,10 +196,14 @@ impl<R: Real> Group<R> {
         self.due.clear();
         if !self.behind_kept.is_empty() {
             let (spacing, layers) = (&self.spacing, &self.layers);
+            let held = self.behind_kept.len();
             self.behind_kept.retain(|&(i, k, _)| {
                 R::of(k as f64) * spacing[i / 2] + layers[i / 2].transit_time >= end
             });
-            self.remask_behind_kept();
+            // (the mask anew only where an entry went, not at every step)
+            if self.behind_kept.len() < held {
+                self.remask_behind_kept();
+            }
         }
         let mut n = 0;
         while n < self.exact.len() {
