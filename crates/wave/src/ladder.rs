@@ -141,7 +141,7 @@ fn merge_check(
             (levels.len() - 1).min(LOOK_BACK),
             if agree_by_chance(levels) {
                 format!(
-                    ", undivided: the last three converge faster than order {FASTEST_ORDER}, faster than a merge does, so the last two agree in part by chance"
+                    ", undivided: the last three converge faster than order {FASTEST_ORDER}, faster than a merge does, so the last two agree in part by chance or end the fast fall of a step"
                 )
             } else {
                 format!(

@@ -584,7 +584,7 @@ fn a_separation_on_a_shared_lattice_point_is_within_the_bound() {
 /// `1.09e-6` and `1.08e-6` below its exact `e` (12.7 M events): the last
 /// two agree to `2.6e-8`, an observed order of 5.1, and the estimate at
 /// first order (`3.0e-7`, the bound `5.9e-7`) left it 1.8 bounds away.
-/// Past order 3 the differences are taken undivided (`convergence.rs`).
+/// Past order 2 the differences are taken undivided (`convergence.rs`).
 #[test]
 fn levels_agreeing_by_chance_keep_the_bound() {
     let rod = Scene::from_json(
