@@ -153,10 +153,11 @@ pub fn summary(title: &str, o: &Timed<Outcome>) -> String {
         }
         if est.merged_converging == Some(false) {
             // (such bounds have been found 3.4 to 37 times too small
-            // against finer ladders, and over 3,000 times on a stack of
-            // real materials whose levels sit on a plateau down to a
-            // fortieth of a transit: README. No factor is promised, and
-            // the next level is one more check, not a proof.)
+            // against finer ladders, and on a stack of real materials
+            // whose levels sit on a plateau down to a fortieth of a
+            // transit, its finer lattices lie 1,500 to 3,600 bounds away:
+            // README. No factor is promised, and the next level is one
+            // more check, not a proof.)
             let check = format!(
                 "the merged estimate may be low, by any factor ({})",
                 finer_level(est.ladder_stop)

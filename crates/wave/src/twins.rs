@@ -25,8 +25,8 @@
 //! one twin 70 to 73 %, three 91 to 96 %, five 95 to 99 %. With the
 //! bound's refinement part, three twins' bound covers 95 % or more on
 //! every one (seed 29's rod 0, whose refinement estimate is a ninth of
-//! its spread, 95 %; nine of them 100 %). The shares are those of the
-//! largest of a few draws, not of the rod.
+//! its spread, 95 %; nine of them 100 %). The shares are what the
+//! largest of a few draws covers of the others, whatever the rod.
 
 use crate::config::WaveConfig;
 use crate::error::WaveError;

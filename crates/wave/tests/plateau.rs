@@ -13,7 +13,7 @@ use impact_wave::{Resolution, WaveConfig, WaveEngine, simulate};
 /// 0.15 mm of glass and 1.4 mm of PTFE, at 3.1 m/s (transits `5.2e-8`,
 /// `4.2e-8`, `1.3e-3`, `2.9e-8` and `3.0e-6` s). Its ladder reports
 /// `0.6530473 ± 4.7e-5`, its levels at 0.2, 0.1 and 0.05 of a transit
-/// `0.65306`, `0.65306`, `0.65305` (order -2.3), its twin `2e-9` away.
+/// `0.65306`, `0.65306`, `0.65305` (order -2.3), its twin `2.3e-9` away.
 /// Finer lattices go on `0.65294`, `0.65111`, `0.64833` (0.025 to 0.0063)
 /// and then `0.72109`, `0.79473`, `0.82375` (0.0031 to 0.0008), not
 /// settled; the chain at `N` = 250 to 2,000 gives `0.62` to `0.84` with 2
