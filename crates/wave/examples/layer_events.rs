@@ -31,6 +31,12 @@ fn main() {
         fold_small_exact: std::env::var_os("NOFOLD").is_none(),
         // the bottom group stepped only with `GROUP=1`
         step_bottom_group: std::env::var_os("GROUP").is_some(),
+        // a finer lattice than the ladder's takes more events than the
+        // default limit: `MAX_EVENTS=N`
+        max_events: std::env::var("MAX_EVENTS")
+            .ok()
+            .and_then(|s| s.parse::<f64>().ok())
+            .map_or(WaveConfig::default().max_events, |n| n as u64),
         ..WaveConfig::default()
     };
     let mut engine = WaveEngine::new(&rod, config).expect("a valid rod");
