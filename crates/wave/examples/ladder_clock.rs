@@ -38,7 +38,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             clock()
         ),
     };
-    let solution = solve_observed(&rod, &WaveConfig::default(), &show)?;
+    // a block's trace on each layer's own lattice with `NOONE=1`
+    let config = WaveConfig {
+        one_lattice_blocks: std::env::var_os("NOONE").is_none(),
+        ..WaveConfig::default()
+    };
+    let solution = solve_observed(&rod, &config, &show)?;
     println!(
         "{:7.3} s  done: e {:.10} ± {:.1e}",
         clock(),

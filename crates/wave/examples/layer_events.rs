@@ -26,6 +26,8 @@ fn main() {
         fast_blocks: std::env::var_os("BLOCKS").is_some(),
         // a block's fastest layer nested in its trace unless `NONEST=1`
         nest_blocks: std::env::var_os("NONEST").is_none(),
+        // a block's trace on one lattice unless `NOONE=1`
+        one_lattice_blocks: std::env::var_os("NOONE").is_none(),
         // small large fronts of a block's response on its ports' lattices
         // unless `NOFOLD=1`
         fold_small_exact: std::env::var_os("NOFOLD").is_none(),

@@ -120,7 +120,7 @@ impl<R: Real> Block<R> {
         interfaces: &[InterfaceCoefficients<R>],
         (lower, upper): (usize, usize),
         spacing: &dyn Fn(usize, Direction) -> R,
-        nesting: Nesting,
+        (nesting, one_lattice): (Nesting, bool),
     ) -> Self {
         let top = upper + 1 == layers.len();
         let mut outs = vec![(lower - 1, Direction::Down)];
@@ -140,9 +140,14 @@ impl<R: Real> Block<R> {
             port_speed: outs.iter().map(|&(j, _)| layers[j].wave_speed).collect(),
             nest: None,
             keep_exact: nesting != Nesting::Inside,
+            shift: None,
+            work_share: vec![1.0; upper + 1 - lower],
         };
         if nesting == Nesting::Allowed {
             shape.nest = response::nested_layer(&shape);
+        }
+        if one_lattice && shape.nest.is_none() {
+            shape.share_one_lattice();
         }
         let traces: Vec<Trace<R>> = (0..outs.len()).map(|j| Trace::start(&shape, j)).collect();
         let ports = outs
@@ -381,6 +386,11 @@ impl<R: Real> Block<R> {
     /// response, if any.
     pub(crate) fn nested(&self) -> Option<usize> {
         self.shape.nest.map(|f| self.lower + f)
+    }
+
+    /// Whether its traces run on one lattice (`response/one_lattice.rs`).
+    pub(crate) fn on_one_lattice(&self) -> bool {
+        self.shape.shift.is_some()
     }
 
     /// What the arrivals at inputs whose trace is done left in the block

@@ -168,6 +168,13 @@ pub struct WaveConfig {
     /// the trace's lattice points and rings out quickly between the
     /// block's slower layers. Off: the trace follows every front of it.
     pub nest_blocks: bool,
+    /// Trace a block whose fastest layer is not nested on one lattice,
+    /// its finest lane's, in every lane (`block/response/one_lattice.rs`):
+    /// a lane's run of points then lands on its neighbours' lattices
+    /// shifted, a pair of multiply-adds a point, and the slower layers
+    /// are finer for it. Off: each layer's lane on its own lattice, each
+    /// point placed alone.
+    pub one_lattice_blocks: bool,
     /// Put a block response's large fronts that their arrival scales
     /// under what the neighbour's lane keeps apart (`keep_above`) on the
     /// port's lattice as the arrival comes, split between two points as
@@ -218,6 +225,7 @@ impl Default for WaveConfig {
             leap_arrivals: LeapArrivals::Merged,
             fast_blocks: true,
             nest_blocks: true,
+            one_lattice_blocks: true,
             fold_small_exact: true,
             step_bottom_group: true,
         }

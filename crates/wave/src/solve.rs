@@ -160,12 +160,21 @@ pub fn solve_observed(
         estimate.merged_observed_order = check.order;
         estimate.ladder_stop = check.stop;
         parts.push(check.method.clone());
-        for (a, b) in fine.answered_blocks() {
+        for ((a, b), one) in fine
+            .answered_blocks()
+            .into_iter()
+            .zip(fine.blocks_on_one_lattice())
+        {
             estimate.answered_blocks.push([a, b]);
             parts.push(format!(
-                "the layers of t{} to t{} answered as one block by its traced response (fast_blocks)",
+                "the layers of t{} to t{} answered as one block by its traced response (fast_blocks){}",
                 a + 1,
-                b + 1
+                b + 1,
+                if one {
+                    ", traced on its finest layer's lattice in every layer (one_lattice_blocks)"
+                } else {
+                    ""
+                }
             ));
         }
         for f in fine.nested_layers() {

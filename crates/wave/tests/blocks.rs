@@ -120,8 +120,9 @@ fn blocks_land_within_their_bound_of_the_exact_value() {
 
 /// Where the block rings long (a fast block between slow, soft layers,
 /// survey rod 20's kind) the exact engine cannot follow it, but the loop
-/// can, front by front on the same lattices: the two ladders must agree
-/// within their bounds.
+/// can, front by front on the same lattices: the ladders must agree
+/// within their bounds, the block traced on one lattice (the default,
+/// `one_lattice_blocks`) or on each layer's own.
 #[test]
 fn blocks_agree_with_the_loop_where_the_block_rings_long() {
     // survey rod 20 (seed 7): a slow bottom under four fast layers and a
@@ -148,17 +149,34 @@ fn blocks_agree_with_the_loop_where_the_block_rings_long() {
             ..WaveConfig::default()
         },
     );
-    assert!(answered(&on), "{on:?}");
-    assert!(!answered(&off), "{off:?}");
-    let d = (on.restitution - off.restitution).abs();
-    eprintln!(
-        "blocks e = {:.10} ± {:.1e}, loop {:.10} ± {:.1e}, |d| = {d:.1e}",
-        on.restitution,
-        bound(&on),
-        off.restitution,
-        bound(&off)
+    let own = ladder(
+        &rod,
+        WaveConfig {
+            fast_blocks: true,
+            one_lattice_blocks: false,
+            ..WaveConfig::default()
+        },
     );
-    assert!(d <= bound(&on) + bound(&off));
+    assert!(answered(&on) && answered(&own), "{on:?}\n{own:?}");
+    assert!(!answered(&off), "{off:?}");
+    let method = |o: &Outcome| o.error_estimate.as_ref().unwrap().method.clone();
+    assert!(
+        method(&on).contains("(one_lattice_blocks)"),
+        "{}",
+        method(&on)
+    );
+    assert!(!method(&own).contains("one_lattice"), "{}", method(&own));
+    for blocks in [&on, &own] {
+        let d = (blocks.restitution - off.restitution).abs();
+        eprintln!(
+            "blocks e = {:.10} ± {:.1e}, loop {:.10} ± {:.1e}, |d| = {d:.1e}",
+            blocks.restitution,
+            bound(blocks),
+            off.restitution,
+            bound(&off)
+        );
+        assert!(d <= bound(blocks) + bound(&off));
+    }
 }
 
 /// A block that the choice takes only since its sums are priced as the

@@ -47,8 +47,9 @@ fn nudged_run(rod: &Rod, k: i32, (p, l): (f64, f64)) -> f64 {
 
 /// The default run of a chattering rod runs three twins (its first twin's
 /// difference is far above what a smooth `e` gives), its merge bound is
-/// twice the largest of their differences (which exceeds its refinement
-/// estimate), recomputed here from runs of the engine alone, and that
+/// at least twice the largest of their differences, recomputed here from
+/// runs of the engine alone (with its block traced on one lattice, its
+/// refinement estimate is the larger: `1.6e-2` against `4.2e-3`), and that
 /// bound covers most of the rod's other nudged runs (ten of twelve at
 /// least; they are draws, and three twins cover 93 % of them on average).
 /// With the one twin it had before, the bound was `2.1e-3` and covered
@@ -94,9 +95,15 @@ fn a_chattering_rods_bound_covers_its_nudged_runs() {
         .map(|&k| nudged_run(&rod, k, lattice))
         .collect();
     let chaos = twins.iter().map(|t| (t - e).abs()).fold(0.0, f64::max);
-    // here the twins' spread is larger than the refinement estimate
+    // the twins' largest difference is the one the method names, and the
+    // merged part is twice it or twice the larger refinement estimate
     assert!(
-        (estimate.merged - 2.0 * chaos).abs() <= 1e-12 * chaos,
+        estimate.method.contains(&format!("({chaos:.1e};")),
+        "twins {twins:?} from {e}: {}",
+        estimate.method
+    );
+    assert!(
+        estimate.merged >= 2.0 * chaos * (1.0 - 1e-12),
         "merged {:e}, twins {twins:?} from {e}",
         estimate.merged
     );

@@ -22,10 +22,11 @@ impl<R: Real> Tracer<R> {
     /// neighbours kept from leaping: the neighbours' lanes take the
     /// blocks' deliveries, which a leap would not see coming. `nest`: a
     /// trace may answer its fastest layer by that layer's own response
-    /// (`response/nested.rs`); `fold`: a response's large fronts that an
+    /// (`response/nested.rs`); `one_lattice`: a trace that nests nothing
+    /// runs on one lattice (`response/one_lattice.rs`); `fold`: a response's large fronts that an
     /// arrival scales under what the neighbour's lane keeps apart go on
     /// the port's lattice (`folded.rs`).
-    pub(crate) fn find_blocks(&mut self, nest: bool, fold: bool) {
+    pub(crate) fn find_blocks(&mut self, nest: bool, one_lattice: bool, fold: bool) {
         let nesting = if nest {
             super::Nesting::Allowed
         } else {
@@ -48,10 +49,17 @@ impl<R: Real> Tracer<R> {
         let mut list = Vec::new();
         let mut probed = 0;
         for run in super::candidates(&transits) {
-            if super::apart(run, &chosen) && self.block_pays(&transits, run, nesting, &mut probed) {
+            if super::apart(run, &chosen)
+                && self.block_pays(&transits, run, (nesting, one_lattice), &mut probed)
+            {
                 chosen.push(run);
-                let mut block =
-                    super::Block::new(&self.layers, &self.interfaces, run, &spacing, nesting);
+                let mut block = super::Block::new(
+                    &self.layers,
+                    &self.interfaces,
+                    run,
+                    &spacing,
+                    (nesting, one_lattice),
+                );
                 if fold {
                     block.fold_below(&keep_above);
                 }
@@ -78,7 +86,7 @@ impl<R: Real> Tracer<R> {
         &self,
         transits: &[f64],
         run: (usize, usize),
-        nesting: super::Nesting,
+        trace: (super::Nesting, bool),
         probed: &mut u64,
     ) -> bool {
         let allowance = super::allowance(transits, run);
@@ -94,7 +102,7 @@ impl<R: Real> Tracer<R> {
             ))
         };
         let mut probe =
-            super::Block::new(&self.layers, &self.interfaces, run, &first_lattice, nesting);
+            super::Block::new(&self.layers, &self.interfaces, run, &first_lattice, trace);
         let (rings_out, followed) = probe.rings_out_within(R::of(allowance));
         *probed += followed;
         rings_out

@@ -26,6 +26,7 @@ use impact_model::InterfaceCoefficients;
 use nested::Inner;
 
 mod nested;
+mod one_lattice;
 pub(crate) use nested::nested_layer;
 
 /// What the block still holds, as a share of the input's velocity, when
@@ -73,6 +74,13 @@ pub(crate) struct Shape<R> {
     /// with the rest, and the trace's own large fronts take a copy that
     /// keeps them (`response/nested.rs`).
     pub keep_exact: bool,
+    /// Where the block's lanes all share one lattice (`one_lattice.rs`):
+    /// per layer, the whole cells and the share of a cell its transit
+    /// spans on it.
+    pub shift: Option<Vec<(i64, R)>>,
+    /// Per layer: how many fronts on the layer's own lattice one traced
+    /// point stands for, in the work counted (1 without a shared lattice).
+    pub work_share: Vec<f64>,
 }
 
 /// The response to a unit jump arriving at one input port, traced as far
@@ -111,6 +119,16 @@ pub(crate) struct Trace<R> {
     tiny: R,
     /// Fronts followed.
     followed: u64,
+    /// On one lattice: the fronts the points taken stand for
+    /// (`one_lattice.rs`).
+    shared_work: f64,
+    /// On one lattice: points taken since what the block holds was last
+    /// summed, and how many it held then.
+    taken_since: usize,
+    held_points: usize,
+    /// On one lattice: per lane, the time before which its arrivals were
+    /// taken.
+    taken_until: Vec<R>,
     steps: u64,
     /// The nested layer's block, if the shape nests one.
     inner: Option<Inner<R>>,
@@ -174,6 +192,10 @@ impl<R: Real> Trace<R> {
             stop,
             tiny: stop * R::of(1e-6),
             followed: 0,
+            shared_work: 0.0,
+            taken_since: 0,
+            held_points: 0,
+            taken_until: vec![R::zero(); 2 * nb],
             inner: shape.nest.map(|f| Inner::new(shape, f)),
         };
         match (input, shape.upper) {
@@ -271,10 +293,16 @@ impl<R: Real> Trace<R> {
     /// within a step was born before it, so the lanes are taken one after
     /// another (scattering is linear, and deposits add).
     pub(crate) fn extend(&mut self, shape: &Shape<R>, out: usize, k: i64) -> u64 {
-        let before = self.followed;
+        let before = self.work();
         let until = R::of((k + 1) as f64) * shape.port_spacing[out];
         self.extend_to(shape, until);
-        self.followed - before
+        self.work() - before
+    }
+
+    /// The fronts followed, and those the points taken on one lattice stand
+    /// for.
+    fn work(&self) -> u64 {
+        self.followed + self.shared_work as u64
     }
 
     /// Follows every front arriving before `until` (or until done).
@@ -288,7 +316,7 @@ impl<R: Real> Trace<R> {
                 break;
             }
             self.steps += 1;
-            if self.steps.is_multiple_of(16) && self.held(shape) < self.stop {
+            if self.held_due(shape) && self.held(shape) < self.stop {
                 self.finish(shape);
                 break;
             }
@@ -305,8 +333,24 @@ impl<R: Real> Trace<R> {
                     n += 1;
                 }
             }
-            for i in 0..self.lanes.len() {
-                self.take_lane(shape, i, end);
+            match &shape.shift {
+                Some(shift) => {
+                    for i in 0..self.lanes.len() {
+                        if self.taken_until[i] < end {
+                            // every point born before `reached` less a
+                            // cell is final: a slow lane takes them all
+                            let (s, t) = (shape.spacing[0], shape.layers[i / 2].transit_time);
+                            let until = self.reached - s + t;
+                            self.take_lane_shifted(shape, i, until, shift[i / 2]);
+                            self.taken_until[i] = until;
+                        }
+                    }
+                }
+                None => {
+                    for i in 0..self.lanes.len() {
+                        self.take_lane(shape, i, end);
+                    }
+                }
             }
             if self.inner.is_some() {
                 self.deliver_nested(shape, end);
@@ -335,11 +379,7 @@ impl<R: Real> Trace<R> {
         if n == 0 {
             return;
         }
-        let mut run = std::mem::take(&mut self.run);
-        run.clear();
-        run.extend_from_slice(&lane.points.as_slice()[..n]);
-        lane.points.skip(n);
-        lane.base += n as i64;
+        let run = self.take_run(i, n);
         self.followed += run.iter().filter(|&&d| d != R::zero()).count() as u64;
         let from = (first, s, transit);
         let top = shape.layers.len() - 1;
@@ -385,6 +425,18 @@ impl<R: Real> Trace<R> {
             }
         }
         self.run = run;
+    }
+
+    /// Lane `i`'s oldest `n` points, taken out into the trace's room for a
+    /// run (to be put back in `self.run` once scattered).
+    fn take_run(&mut self, i: usize, n: usize) -> Vec<R> {
+        let mut run = std::mem::take(&mut self.run);
+        run.clear();
+        let lane = &mut self.lanes[i];
+        run.extend_from_slice(&lane.points.as_slice()[..n]);
+        lane.points.skip(n);
+        lane.base += n as i64;
+        run
     }
 
     /// The fronts `coef * x` that the points `x` of a run (from lattice

@@ -109,6 +109,16 @@ impl<R: Real> Tracer<R> {
             .collect()
     }
 
+    /// Which of those blocks are traced on one lattice
+    /// (`WaveConfig::one_lattice_blocks`), in the same order.
+    pub fn blocks_on_one_lattice(&self) -> Vec<bool> {
+        self.blocks
+            .list
+            .iter()
+            .map(|b| b.on_one_lattice())
+            .collect()
+    }
+
     /// The layers inside those blocks whose traces answer them by their
     /// own response (`WaveConfig::nest_blocks`).
     pub fn nested_layers(&self) -> Vec<usize> {

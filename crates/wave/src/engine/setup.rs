@@ -217,7 +217,11 @@ impl<R: Real> Tracer<R> {
         // (a recording of fronts shows every front: blocks keep theirs
         // inside their response)
         if merged && config.fast_blocks && !config.record.fronts {
-            engine.find_blocks(config.nest_blocks, config.fold_small_exact);
+            engine.find_blocks(
+                config.nest_blocks,
+                config.one_lattice_blocks,
+                config.fold_small_exact,
+            );
         }
         if merged && config.step_bottom_group && config.record == Record::default() {
             engine.find_group();

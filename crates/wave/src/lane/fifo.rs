@@ -69,6 +69,12 @@ impl<T: Copy> Fifo<T> {
         &self.items[self.head..]
     }
 
+    /// The items, oldest first, to change in place.
+    #[inline(always)]
+    pub fn as_mut_slice(&mut self) -> &mut [T] {
+        &mut self.items[self.head..]
+    }
+
     #[inline(always)]
     pub fn iter(&self) -> std::slice::Iter<'_, T> {
         self.as_slice().iter()

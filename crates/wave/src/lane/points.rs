@@ -38,6 +38,43 @@ impl<R: Real> LatticePoints<R> {
         }
     }
 
+    /// Adds `lo * run[j]` at point `k + j` and `hi * run[j]` at point
+    /// `k + j + 1`, for every `j`: a run of births that all fall the same
+    /// share of a cell past a lattice point (`hi` of the birth on the upper
+    /// point, as [`LatticePoints::add`] splits one), which is how a lane's
+    /// run lands on a lattice of the same spacing (a block traced on one
+    /// lattice, `block/response.rs`). Each point takes its two shares in one
+    /// sum, in a loop the compiler can vectorise.
+    pub(crate) fn add_shifted(&mut self, k: i64, run: &[R], lo: R, hi: R) {
+        let Some(&last) = run.last() else {
+            return;
+        };
+        self.cover(k, k + run.len() as i64);
+        let start = (k - self.base) as usize;
+        let points = &mut self.points.as_mut_slice()[start..=start + run.len()];
+        let mut before = R::zero();
+        for (x, &d) in points.iter_mut().zip(run) {
+            *x += lo * d + hi * before;
+            before = d;
+        }
+        points[run.len()] += hi * last;
+    }
+
+    /// Makes the lane hold points `from` to `to` (zeros where it held
+    /// none).
+    fn cover(&mut self, from: i64, to: i64) {
+        if self.points.is_empty() {
+            self.base = from;
+        }
+        while from < self.base {
+            self.points.insert(0, R::zero());
+            self.base -= 1;
+        }
+        let end = usize::try_from(to - self.base + 1).unwrap_or(0);
+        let more = end.saturating_sub(self.points.len());
+        self.points.extend(std::iter::repeat_n(R::zero(), more));
+    }
+
     /// What point `k` holds, if the lane holds it and it is not zero.
     pub(crate) fn get(&self, k: i64) -> Option<R> {
         usize::try_from(k.wrapping_sub(self.base))

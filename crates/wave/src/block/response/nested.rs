@@ -151,14 +151,14 @@ impl<R: Real> Inner<R> {
             &shape.inner,
             (f, f),
             &spacing,
-            Nesting::Inside,
+            (Nesting::Inside, false),
         );
         let mut large = Block::new(
             &shape.layers,
             &shape.inner,
             (f, f),
             &spacing,
-            Nesting::Never,
+            (Nesting::Never, false),
         );
         for trace in &mut large.traces {
             trace.extend(&large.shape, 0, i64::MAX / 4);

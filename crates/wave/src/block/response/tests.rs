@@ -4,7 +4,7 @@ use super::*;
 use impact_model::WaveConstants;
 
 /// A layer of `length`, `modulus` and `density` as the engine holds it.
-fn layer(length: f64, modulus: f64, density: f64) -> LayerConst<f64> {
+pub(super) fn layer(length: f64, modulus: f64, density: f64) -> LayerConst<f64> {
     let w = WaveConstants::of(length, modulus, density);
     LayerConst {
         bottom: 0.0,
@@ -18,14 +18,14 @@ fn layer(length: f64, modulus: f64, density: f64) -> LayerConst<f64> {
     }
 }
 
-fn side(l: &LayerConst<f64>) -> (f64, f64) {
+pub(super) fn side(l: &LayerConst<f64>) -> (f64, f64) {
     (l.impedance, l.modulus)
 }
 
 /// The block between `below` and `above` (`None`: the free top), on
 /// lattices of `share` of each transit, ports on a tenth of the
 /// neighbours'.
-fn shape(
+pub(super) fn shape(
     below: LayerConst<f64>,
     block: &[LayerConst<f64>],
     above: Option<LayerConst<f64>>,
@@ -53,12 +53,14 @@ fn shape(
         port_speed: ports.iter().map(|l| l.wave_speed).collect(),
         nest: None,
         keep_exact: true,
+        shift: None,
+        work_share: vec![1.0; block.len()],
     }
 }
 
 /// A block of three stiff layers between two soft neighbours: below,
 /// the block, above.
-fn three_stiff_layers() -> (LayerConst<f64>, [LayerConst<f64>; 3], LayerConst<f64>) {
+pub(super) fn three_stiff_layers() -> (LayerConst<f64>, [LayerConst<f64>; 3], LayerConst<f64>) {
     let block = [
         layer(0.02, 1e4, 2.0),
         layer(0.01, 3e5, 1.0),
@@ -69,13 +71,13 @@ fn three_stiff_layers() -> (LayerConst<f64>, [LayerConst<f64>; 3], LayerConst<f6
 
 /// The whole response to a unit arrival at `input`: its taps at each
 /// port, summed.
-fn totals(shape: &Shape<f64>, input: usize) -> Vec<f64> {
+pub(super) fn totals(shape: &Shape<f64>, input: usize) -> Vec<f64> {
     moments(shape, input).iter().map(|m| m.0).collect()
 }
 
 /// The whole response to a unit arrival at `input`, per port: its jumps
 /// summed, and their first moment in time.
-fn moments(shape: &Shape<f64>, input: usize) -> Vec<(f64, f64)> {
+pub(super) fn moments(shape: &Shape<f64>, input: usize) -> Vec<(f64, f64)> {
     let mut trace = Trace::start(shape, input);
     trace.extend(shape, 0, 1 << 40);
     assert!(trace.done, "the trace ends");
@@ -101,7 +103,7 @@ fn moments(shape: &Shape<f64>, input: usize) -> Vec<(f64, f64)> {
 /// The response's running sum at each port (what its jumps add up to by
 /// each lattice point, the large fronts put on the lattice), as far as
 /// the trace goes.
-fn running(shape: &Shape<f64>, input: usize, o: usize) -> Vec<f64> {
+pub(super) fn running(shape: &Shape<f64>, input: usize, o: usize) -> Vec<f64> {
     let mut trace = Trace::start(shape, input);
     trace.extend(shape, 0, 1 << 40);
     let mut taps = trace.taps[o].clone();
@@ -117,6 +119,16 @@ fn running(shape: &Shape<f64>, input: usize, o: usize) -> Vec<f64> {
         .collect()
 }
 
+/// How far apart the running sums of two shapes' responses to `input`
+/// come at port `o`, at most (the shorter held at its last).
+pub(super) fn running_apart(a: &Shape<f64>, b: &Shape<f64>, input: usize, o: usize) -> f64 {
+    let (a, b) = (running(a, input, o), running(b, input, o));
+    let at = |v: &[f64], k: usize| v.get(k).or(v.last()).copied().unwrap_or(0.0);
+    (0..a.len().max(b.len()))
+        .map(|k| (at(&a, k) - at(&b, k)).abs())
+        .fold(0.0, f64::max)
+}
+
 /// Nested or not, the response is the same lattice model's, first order
 /// in the spacing: the running sums of the two responses at each port
 /// differ by at most `1e-6` of the unit input, and by half as much or
@@ -129,18 +141,20 @@ fn a_nested_response_converges_to_the_followed_one() {
         let plain = shape(below, &block, Some(above), share);
         let mut nested = plain.clone();
         nested.nest = Some(1);
-        let (a, b) = (running(&plain, input, o), running(&nested, input, o));
-        let n = a.len().max(b.len());
-        let at = |v: &[f64], k: usize| v.get(k).or(v.last()).copied().unwrap_or(0.0);
-        (0..n)
-            .map(|k| (at(&a, k) - at(&b, k)).abs())
-            .fold(0.0, f64::max)
+        running_apart(&plain, &nested, input, o)
     };
+    assert_first_order(apart, 1e-6);
+}
+
+/// `apart(share, input, port)` at each input and port at least halves
+/// from lattices of a fifth of each transit to a twentieth, and is under
+/// `limit` there.
+pub(super) fn assert_first_order(apart: impl Fn(f64, usize, usize) -> f64, limit: f64) {
     for input in 0..2 {
         for o in 0..2 {
             let (coarse, fine) = (apart(0.2, input, o), apart(0.05, input, o));
             assert!(
-                fine < coarse / 2.0 && fine < 1e-6,
+                fine < coarse / 2.0 && fine < limit,
                 "input {input}, port {o}: {coarse} -> {fine}"
             );
         }
@@ -162,16 +176,7 @@ fn a_nested_layer_keeps_the_responses_jumps_and_first_moments() {
         // (nested whatever it costs: the responses are what is checked)
         nested.nest = Some(1);
         for input in 0..2 {
-            let (a, b) = (moments(&plain, input), moments(&nested, input));
-            for o in 0..2 {
-                let close = |x: f64, y: f64| (x - y).abs() <= 1e-10 * (1.0 + x.abs());
-                assert!(
-                    close(a[o].0, b[o].0) && close(a[o].1, b[o].1),
-                    "share {share}, input {input}, port {o}: {:?} against {:?}",
-                    a[o],
-                    b[o]
-                );
-            }
+            assert_same_moments(&plain, &nested, input);
             let followed = |s: &Shape<f64>| {
                 let mut trace = Trace::start(s, input);
                 trace.extend(s, 0, 1 << 40);
@@ -184,6 +189,21 @@ fn a_nested_layer_keeps_the_responses_jumps_and_first_moments() {
                 followed(&plain)
             );
         }
+    }
+}
+
+/// The whole responses of `a` and `b` to `input` carry the same jumps and
+/// first moments at each port, to `1e-10`.
+pub(super) fn assert_same_moments(a: &Shape<f64>, b: &Shape<f64>, input: usize) {
+    let (x, y) = (moments(a, input), moments(b, input));
+    for o in 0..x.len() {
+        let close = |p: f64, q: f64| (p - q).abs() <= 1e-10 * (1.0 + p.abs());
+        assert!(
+            close(x[o].0, y[o].0) && close(x[o].1, y[o].1),
+            "input {input}, port {o}: {:?} against {:?}",
+            x[o],
+            y[o]
+        );
     }
 }
 
@@ -319,24 +339,36 @@ fn a_block_is_transparent_at_zero_frequency() {
         if nested {
             s.nest = Some(1);
         }
-        let direct = InterfaceCoefficients::of_sides(side(&below), side(&above));
-        let from_below = totals(&s, 0);
-        let from_above = totals(&s, 1);
-        let close = |a: f64, b: f64| (a - b).abs() < 1e-9;
-        assert!(close(
-            from_below[0] + s.lower.up_reflected,
-            direct.up_reflected
-        ));
-        assert!(close(from_below[1], direct.up_transmitted));
-        assert!(close(
-            from_above[1] + s.upper.unwrap().down_reflected,
-            direct.down_reflected
-        ));
-        assert!(close(from_above[0], direct.down_transmitted));
         let top = shape(below, &block[..2], None, share);
-        let free = totals(&top, 0);
-        assert!(close(free[0] + top.lower.up_reflected, -1.0), "{free:?}");
+        assert_transparent(&s, &top, (&below, &above));
     }
+}
+
+/// `between` (a block between `below` and `above`) reflects and transmits
+/// over all time, with its faces' reflections, what the interface between
+/// its neighbours would, and `top` (a block under the free top) what a
+/// free end reflects, to `1e-9`.
+pub(super) fn assert_transparent(
+    between: &Shape<f64>,
+    top: &Shape<f64>,
+    (below, above): (&LayerConst<f64>, &LayerConst<f64>),
+) {
+    let direct = InterfaceCoefficients::of_sides(side(below), side(above));
+    let from_below = totals(between, 0);
+    let from_above = totals(between, 1);
+    let close = |a: f64, b: f64| (a - b).abs() < 1e-9;
+    assert!(close(
+        from_below[0] + between.lower.up_reflected,
+        direct.up_reflected
+    ));
+    assert!(close(from_below[1], direct.up_transmitted));
+    assert!(close(
+        from_above[1] + between.upper.unwrap().down_reflected,
+        direct.down_reflected
+    ));
+    assert!(close(from_above[0], direct.down_transmitted));
+    let free = totals(top, 0);
+    assert!(close(free[0] + top.lower.up_reflected, -1.0), "{free:?}");
 }
 
 /// The response's first front: a unit arrival from below first comes

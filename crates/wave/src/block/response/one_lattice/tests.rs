@@ -1,0 +1,167 @@
+//! One lattice against the same lattice taken point by point, against
+//! each layer's own lattice, and against what a block must do.
+
+use super::super::tests::{
+    assert_first_order, assert_same_moments, assert_transparent, running_apart, shape,
+    three_stiff_layers,
+};
+use super::super::{Shape, Trace};
+use crate::lane::LatticePoints;
+
+/// `shape` with every lane on its finest lattice but taken as the trace
+/// takes lanes of their own lattices, point by point
+/// (`Trace::take_lane`): the oracle of the shifted runs.
+fn one_lattice_point_by_point(shape: &Shape<f64>) -> Shape<f64> {
+    let mut shifted = shape.clone();
+    shifted.share_one_lattice();
+    Shape {
+        shift: None,
+        work_share: vec![1.0; shape.layers.len()],
+        ..shifted
+    }
+}
+
+fn one_lattice(shape: &Shape<f64>) -> Shape<f64> {
+    let mut s = shape.clone();
+    s.share_one_lattice();
+    s
+}
+
+/// Per port: the taps, and the exact fronts `(delay, jump)`.
+type Response = (Vec<Vec<f64>>, Vec<Vec<(f64, f64)>>);
+
+/// The whole trace, taps and exact fronts per port.
+fn traced(shape: &Shape<f64>, input: usize) -> Response {
+    let mut trace = Trace::start(shape, input);
+    trace.extend(shape, 0, 1 << 40);
+    assert!(trace.done, "the trace ends");
+    (trace.taps, trace.exact)
+}
+
+/// Runs landed shifted give the taps that the same lattice gives point
+/// by point, to rounding (`1e-12` of the unit input: the places are
+/// summed in another order, and the point-by-point trace drops fronts
+/// under `1e-19` of it where the shifted one keeps them), and the same
+/// exact fronts: three blocks (two with an upper port, one at the free
+/// top) from each input, on lattices of a fifth and a twentieth of each
+/// transit.
+#[test]
+fn shifted_runs_land_as_points_placed_one_by_one() {
+    let (below, block, above) = three_stiff_layers();
+    for share in [0.2, 0.05] {
+        let shapes = [
+            shape(below, &block, Some(above), share),
+            shape(below, &block[1..], Some(above), share),
+            shape(below, &block[..2], None, share),
+        ];
+        for s in &shapes {
+            for input in 0..s.port_spacing.len() {
+                let (taps, exact) = traced(&one_lattice(s), input);
+                let (want, want_exact) = traced(&one_lattice_point_by_point(s), input);
+                assert_eq!(exact, want_exact);
+                for (o, (a, b)) in taps.iter().zip(&want).enumerate() {
+                    let n = a.len().max(b.len());
+                    let at = |v: &[f64], k: usize| v.get(k).copied().unwrap_or(0.0);
+                    let apart = (0..n)
+                        .map(|k| (at(a, k) - at(b, k)).abs())
+                        .fold(0.0, f64::max);
+                    let largest = b.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                    assert!(
+                        apart <= 1e-12 && largest > 1e-3,
+                        "share {share}, input {input}, port {o}: {apart:e} (largest tap {largest:e})"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// A lattice keeps each front's jump and first moment where it puts it,
+/// so the whole response's jumps and their first moment at each port are
+/// the same on one lattice as on each layer's own, to rounding.
+#[test]
+fn one_lattice_keeps_the_responses_jumps_and_first_moments() {
+    let (below, block, above) = three_stiff_layers();
+    for share in [0.2, 0.05] {
+        let own = shape(below, &block, Some(above), share);
+        let one = one_lattice(&own);
+        for input in 0..2 {
+            assert_same_moments(&own, &one, input);
+        }
+    }
+}
+
+/// Both lattices are first-order models of one response: the running
+/// sums of the two at each port differ by less on lattices of a twentieth
+/// of each transit than on lattices of a fifth, by half or more, and by
+/// at most `1e-3` of the unit input there.
+#[test]
+fn one_lattice_converges_with_each_layers_own() {
+    let (below, block, above) = three_stiff_layers();
+    let apart = |share: f64, input: usize, o: usize| {
+        let own = shape(below, &block, Some(above), share);
+        running_apart(&own, &one_lattice(&own), input, o)
+    };
+    assert_first_order(apart, 1e-3);
+}
+
+/// At zero frequency a block is not there (see the test of that name for
+/// each layer's own lattice): on one lattice too, what it sends back with
+/// its face's reflection is what the interface between its neighbours
+/// reflects, and what it passes is what that interface transmits.
+#[test]
+fn a_block_on_one_lattice_is_transparent_at_zero_frequency() {
+    let (below, block, above) = three_stiff_layers();
+    for share in [0.2, 0.05] {
+        let between = one_lattice(&shape(below, &block, Some(above), share));
+        let top = one_lattice(&shape(below, &block[..2], None, share));
+        assert_transparent(&between, &top, (&below, &above));
+    }
+}
+
+/// A shifted add against its definition (a map from lattice point to the
+/// sum of what was added there): runs landing inside the lane, past its
+/// newest point, before its oldest and into an emptied lane, with the
+/// oldest points taken in between.
+#[test]
+fn a_shifted_run_adds_its_two_shares_on_each_point() {
+    let mut lane = LatticePoints::<f64>::default();
+    let mut held = std::collections::BTreeMap::<i64, f64>::new();
+    let mut next = crate::test_random::xorshift(0x9e37_79b9_7f4a_7c15u64);
+    for step in 0..2000i64 {
+        let k = step / 4 + (next() % 40) as i64 - 20;
+        let run: Vec<f64> = (0..next() % 12)
+            .map(|_| (next() % 1000) as f64 / 64.0 - 7.0)
+            .collect();
+        let (lo, hi) = (0.75, -0.125);
+        lane.add_shifted(k, &run, lo, hi);
+        for (j, &d) in run.iter().enumerate() {
+            *held.entry(k + j as i64).or_insert(0.0) += lo * d;
+            *held.entry(k + j as i64 + 1).or_insert(0.0) += hi * d;
+        }
+        if step % 37 == 36 {
+            let take = (next() % 60) as usize;
+            for _ in 0..take {
+                if lane.points.pop_front().is_none() {
+                    break;
+                }
+                lane.base += 1;
+            }
+            held.retain(|&p, _| p >= lane.base);
+        }
+        for (&p, &want) in &held {
+            let got = usize::try_from(p - lane.base)
+                .ok()
+                .and_then(|i| lane.points.get(i))
+                .copied()
+                .unwrap_or(0.0);
+            assert!(
+                (got - want).abs() <= 1e-12 * (1.0 + want.abs()),
+                "step {step}: point {p}: {got} against {want}"
+            );
+        }
+        let total: f64 = lane.points.iter().map(|x| x.abs()).sum();
+        let want: f64 = held.values().map(|x| x.abs()).sum();
+        assert!((total - want).abs() <= 1e-9 * (1.0 + want), "step {step}");
+    }
+}
