@@ -146,7 +146,7 @@ impl<R: Real> Block<R> {
         if nesting == Nesting::Allowed {
             shape.nest = response::nested_layer(&shape);
         }
-        if one_lattice && shape.nest.is_none() {
+        if one_lattice && shape.nest.is_none() && shape.fits_one_lattice() {
             shape.share_one_lattice();
         }
         let traces: Vec<Trace<R>> = (0..outs.len()).map(|j| Trace::start(&shape, j)).collect();

@@ -169,7 +169,8 @@ pub struct WaveConfig {
     /// block's slower layers. Off: the trace follows every front of it.
     pub nest_blocks: bool,
     /// Trace a block whose fastest layer is not nested on one lattice,
-    /// its finest lane's, in every lane (`block/response/one_lattice.rs`):
+    /// its finest lane's, in every lane, where its lanes then hold at most
+    /// `2^18` points (`block/response/one_lattice.rs`):
     /// a lane's run of points then lands on its neighbours' lattices
     /// shifted, a pair of multiply-adds a point, and the slower layers
     /// are finer for it. Off: each layer's lane on its own lattice, each

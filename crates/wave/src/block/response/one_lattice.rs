@@ -31,7 +31,30 @@ mod tests;
 /// the time), and the trace runs on at most that much past its end.
 const HELD_EVERY: usize = 8;
 
+/// The most points a block's lanes may hold on one lattice (a transit's
+/// worth each, on the finest spacing): 2 MiB of them a trace. Seed 3's
+/// rod 32, whose block holds two layers 77,000 times slower than its
+/// fastest, would hold 7 M points a trace, and its run peaked at 521 MiB
+/// against 34 on each layer's own lattice.
+const MOST_POINTS: f64 = (1 << 18) as f64;
+
 impl<R: Real> Shape<R> {
+    /// Whether the block's lanes fit on one lattice: at most
+    /// [`MOST_POINTS`] on its finest spacing.
+    pub(crate) fn fits_one_lattice(&self) -> bool {
+        let finest = self
+            .spacing
+            .iter()
+            .map(|s| s.to_f64())
+            .fold(f64::INFINITY, f64::min);
+        let points: f64 = self
+            .layers
+            .iter()
+            .map(|l| 2.0 * l.transit_time.to_f64() / finest)
+            .sum();
+        points <= MOST_POINTS
+    }
+
     /// Puts every lane of the block on its finest lattice: the spacings,
     /// each layer's transit in cells, and what a point stands for.
     pub(crate) fn share_one_lattice(&mut self) {

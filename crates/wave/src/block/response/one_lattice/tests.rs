@@ -165,3 +165,26 @@ fn a_shifted_run_adds_its_two_shares_on_each_point() {
         assert!((total - want).abs() <= 1e-9 * (1.0 + want), "step {step}");
     }
 }
+
+/// A block fits on one lattice while its lanes hold at most `2^18`
+/// points there: the three stiff layers at a twentieth of the fastest
+/// transit hold about 700, and with a layer a hundred thousand times
+/// slower than the fastest (seed 3's rod 32 held two at 77,000) four
+/// million, which stay on their own lattice.
+#[test]
+fn a_block_with_a_far_slower_layer_keeps_each_layers_own_lattice() {
+    let (below, block, above) = three_stiff_layers();
+    assert!(shape(below, &block, Some(above), 0.05).fits_one_lattice());
+    let fastest = block
+        .iter()
+        .map(|l| l.transit_time)
+        .fold(f64::INFINITY, f64::min);
+    let mut slow = block[2];
+    // the same impedance, a hundred thousand times the fastest transit
+    let stretch = 1e5 * fastest / slow.transit_time;
+    slow.length *= stretch;
+    slow.top = slow.length;
+    slow.transit_time *= stretch;
+    let with_slow = [block[0], block[1], slow];
+    assert!(!shape(below, &with_slow, Some(above), 0.05).fits_one_lattice());
+}
