@@ -17,7 +17,7 @@
 //! What a traced point costs in the work the budget counts stays what the
 //! fronts it stands for on the layer's own lattice cost, so a ladder runs
 //! the levels it ran before; and what the block still holds is summed no
-//! more often than the trace takes as many points as it holds.
+//! more often than the trace takes eight times the points it holds.
 
 use super::{Shape, Trace};
 use crate::real::Real;
@@ -204,9 +204,9 @@ impl<R: Real> Trace<R> {
     }
 
     /// Whether what the block holds is due to be summed: every sixteenth
-    /// step, and on one lattice only once the trace has taken as many
-    /// points as it held at the last sum (its slow layers hold many, each
-    /// taken once a transit).
+    /// step, and on one lattice only once the trace has taken
+    /// [`HELD_EVERY`] times the points it held at the last sum (its slow
+    /// layers hold many, each taken once a transit).
     pub(super) fn held_due(&mut self, shape: &Shape<R>) -> bool {
         if !self.steps.is_multiple_of(16) {
             return false;
