@@ -140,7 +140,7 @@ impl<R: Real> Block<R> {
             port_speed: outs.iter().map(|&(j, _)| layers[j].wave_speed).collect(),
             nest: None,
             keep_exact: nesting != Nesting::Inside,
-            shift: None,
+            powers: None,
             work_share: vec![1.0; upper + 1 - lower],
         };
         if nesting == Nesting::Allowed {
@@ -390,7 +390,7 @@ impl<R: Real> Block<R> {
 
     /// Whether its traces run on one lattice (`response/one_lattice.rs`).
     pub(crate) fn on_one_lattice(&self) -> bool {
-        self.shape.shift.is_some()
+        self.shape.powers.is_some()
     }
 
     /// What the arrivals at inputs whose trace is done left in the block

@@ -169,12 +169,12 @@ pub struct WaveConfig {
     /// block's slower layers. Off: the trace follows every front of it.
     pub nest_blocks: bool,
     /// Trace a block whose fastest layer is not nested on one lattice,
-    /// its finest lane's, in every lane, where its lanes then hold at most
-    /// `2^18` points (`block/response/one_lattice.rs`):
-    /// a lane's run of points then lands on its neighbours' lattices
-    /// shifted, a pair of multiply-adds a point, and the slower layers
-    /// are finer for it. Off: each layer's lane on its own lattice, each
-    /// point placed alone.
+    /// its finest lane's times a power of two in every lane (the largest
+    /// not coarser than the lane's own), where its lanes then hold at
+    /// most `2^18` points (`block/response/one_lattice.rs`): a lane's run
+    /// of points then lands on its neighbours' lattices shifted, a pair
+    /// of multiply-adds a point. Off: each layer's lane on its own
+    /// lattice, each point placed alone.
     pub one_lattice_blocks: bool,
     /// Put a block response's large fronts that their arrival scales
     /// under what the neighbour's lane keeps apart (`keep_above`) on the

@@ -171,7 +171,7 @@ pub fn solve_observed(
                 a + 1,
                 b + 1,
                 if one {
-                    ", traced on its finest layer's lattice in every layer (one_lattice_blocks)"
+                    ", traced on one lattice, its finest layer's times a power of two in every layer (one_lattice_blocks)"
                 } else {
                     ""
                 }

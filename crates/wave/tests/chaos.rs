@@ -48,8 +48,10 @@ fn nudged_run(rod: &Rod, k: i32, (p, l): (f64, f64)) -> f64 {
 /// The default run of a chattering rod runs three twins (its first twin's
 /// difference is far above what a smooth `e` gives), its merge bound is
 /// at least twice the largest of their differences, recomputed here from
-/// runs of the engine alone (with its block traced on one lattice, its
-/// refinement estimate is the larger: `1.6e-2` against `4.2e-3`), and that
+/// runs of the engine alone (the refinement estimate may be the larger:
+/// with its block traced on the finest lattice in every lane it was
+/// `1.6e-2` against `4.2e-3`; on lattices that nest, `4.0e-3` against
+/// `4.3e-3`), and that
 /// bound covers most of the rod's other nudged runs (ten of twelve at
 /// least; they are draws, and three twins cover 93 % of them on average).
 /// With the one twin it had before, the bound was `2.1e-3` and covered

@@ -75,9 +75,8 @@ pub(crate) struct Shape<R> {
     /// keeps them (`response/nested.rs`).
     pub keep_exact: bool,
     /// Where the block's lanes all share one lattice (`one_lattice.rs`):
-    /// per layer, the whole cells and the share of a cell its transit
-    /// spans on it.
-    pub shift: Option<Vec<(i64, R)>>,
+    /// per layer, its spacing is the finest's times two to this power.
+    pub powers: Option<Vec<u32>>,
     /// Per layer: how many fronts on the layer's own lattice one traced
     /// point stands for, in the work counted (1 without a shared lattice).
     pub work_share: Vec<f64>,
@@ -333,15 +332,15 @@ impl<R: Real> Trace<R> {
                     n += 1;
                 }
             }
-            match &shape.shift {
-                Some(shift) => {
+            match &shape.powers {
+                Some(powers) => {
                     for i in 0..self.lanes.len() {
                         if self.taken_until[i] < end {
                             // every point born before `reached` less a
                             // cell is final: a slow lane takes them all
-                            let (s, t) = (shape.spacing[0], shape.layers[i / 2].transit_time);
+                            let (s, t) = (shape.spacing[i / 2], shape.layers[i / 2].transit_time);
                             let until = self.reached - s + t;
-                            self.take_lane_shifted(shape, i, until, shift[i / 2]);
+                            self.take_lane_shifted(shape, i, until, powers);
                             self.taken_until[i] = until;
                         }
                     }

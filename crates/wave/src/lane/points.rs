@@ -60,6 +60,48 @@ impl<R: Real> LatticePoints<R> {
         points[run.len()] += hi * last;
     }
 
+    /// [`LatticePoints::add_shifted`] with the run's points `stride` points
+    /// apart: `lo * run[j]` at point `k + j stride` and `hi * run[j]` at the
+    /// one after it (a run of a lane whose spacing is `stride` times this
+    /// one's, `block/response/one_lattice.rs`).
+    pub(crate) fn add_strided(&mut self, k: i64, stride: usize, run: &[R], lo: R, hi: R) {
+        if stride <= 1 {
+            return self.add_shifted(k, run, lo, hi);
+        }
+        if run.is_empty() {
+            return;
+        }
+        self.cover(k, k + ((run.len() - 1) * stride) as i64 + 1);
+        let start = (k - self.base) as usize;
+        let points = &mut self.points.as_mut_slice()[start..];
+        for (pair, &d) in points.chunks_mut(stride).zip(run) {
+            pair[0] += lo * d;
+            pair[1] += hi * d;
+        }
+    }
+
+    /// A run of a lane `shares.len()` times finer than this one (a power
+    /// of two), from point `k` on: its points in groups of that many, the
+    /// `c`-th of group `q` split between points `k + q + off` and the one
+    /// after as `shares[c] = (off, lo, hi)` says (the points of one class
+    /// fall the same share of a cell past this lane's points,
+    /// `block/response/one_lattice.rs`).
+    pub(crate) fn add_classes(&mut self, k: i64, run: &[R], shares: &[(usize, R, R)]) {
+        if run.is_empty() {
+            return;
+        }
+        let groups = run.len().div_ceil(shares.len());
+        self.cover(k, k + groups as i64 + 1);
+        let start = (k - self.base) as usize;
+        let points = &mut self.points.as_mut_slice()[start..=start + groups + 1];
+        for (q, group) in run.chunks(shares.len()).enumerate() {
+            for (&d, &(off, lo, hi)) in group.iter().zip(shares) {
+                points[q + off] += lo * d;
+                points[q + off + 1] += hi * d;
+            }
+        }
+    }
+
     /// Makes the lane hold points `from` to `to` (zeros where it held
     /// none).
     fn cover(&mut self, from: i64, to: i64) {

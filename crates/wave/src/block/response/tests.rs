@@ -53,7 +53,7 @@ pub(super) fn shape(
         port_speed: ports.iter().map(|l| l.wave_speed).collect(),
         nest: None,
         keep_exact: true,
-        shift: None,
+        powers: None,
         work_share: vec![1.0; block.len()],
     }
 }

@@ -15,7 +15,7 @@ fn one_lattice_point_by_point(shape: &Shape<f64>) -> Shape<f64> {
     let mut shifted = shape.clone();
     shifted.share_one_lattice();
     Shape {
-        shift: None,
+        powers: None,
         work_share: vec![1.0; shape.layers.len()],
         ..shifted
     }
@@ -122,7 +122,9 @@ fn a_block_on_one_lattice_is_transparent_at_zero_frequency() {
 /// A shifted add against its definition (a map from lattice point to the
 /// sum of what was added there): runs landing inside the lane, past its
 /// newest point, before its oldest and into an emptied lane, with the
-/// oldest points taken in between.
+/// oldest points taken in between: a run's points next to each other,
+/// or up to eight points apart (a slower lane's run), or a few to a
+/// point (a faster lane's, class by class).
 #[test]
 fn a_shifted_run_adds_its_two_shares_on_each_point() {
     let mut lane = LatticePoints::<f64>::default();
@@ -134,10 +136,26 @@ fn a_shifted_run_adds_its_two_shares_on_each_point() {
             .map(|_| (next() % 1000) as f64 / 64.0 - 7.0)
             .collect();
         let (lo, hi) = (0.75, -0.125);
-        lane.add_shifted(k, &run, lo, hi);
-        for (j, &d) in run.iter().enumerate() {
-            *held.entry(k + j as i64).or_insert(0.0) += lo * d;
-            *held.entry(k + j as i64 + 1).or_insert(0.0) += hi * d;
+        let stride = [1, 1, 2, 3, 8][(next() % 5) as usize];
+        if next().is_multiple_of(2) {
+            lane.add_strided(k, stride, &run, lo, hi);
+            for (j, &d) in run.iter().enumerate() {
+                let at = k + (j * stride) as i64;
+                *held.entry(at).or_insert(0.0) += lo * d;
+                *held.entry(at + 1).or_insert(0.0) += hi * d;
+            }
+        } else {
+            // a run of a lane `stride` times finer, its classes' shares
+            let shares: Vec<(usize, f64, f64)> = (0..stride)
+                .map(|_| ((next() % 2) as usize, lo, hi))
+                .collect();
+            lane.add_classes(k, &run, &shares);
+            for (j, &d) in run.iter().enumerate() {
+                let (off, lo, hi) = shares[j % stride];
+                let at = k + (j / stride + off) as i64;
+                *held.entry(at).or_insert(0.0) += lo * d;
+                *held.entry(at + 1).or_insert(0.0) += hi * d;
+            }
         }
         if step % 37 == 36 {
             let take = (next() % 60) as usize;
@@ -166,15 +184,18 @@ fn a_shifted_run_adds_its_two_shares_on_each_point() {
     }
 }
 
-/// A block fits on one lattice while its lanes hold at most `2^18`
-/// points there: the three stiff layers at a twentieth of the fastest
-/// transit hold about 700, and with a layer a hundred thousand times
-/// slower than the fastest (seed 3's rod 32 held two at 77,000) four
-/// million, which stay on their own lattice.
+/// A layer far slower than the block's fastest goes on a lattice a power
+/// of two coarser, no finer than twice its own lattice (seed 3's rod 32,
+/// two of whose layers are 77,000 times slower than its fastest, would
+/// have held 7 M points a trace on the fastest's lattice): a layer a
+/// hundred thousand times slower holds fewer than twice the points it
+/// holds on its own lattice, its lattice nests the fastest's, and its
+/// runs land as points placed one by one (to `1e-11` of the input: the
+/// fast lanes' points lie millions of cells from the trace's start, and
+/// each side computes their places in its own order).
 #[test]
-fn a_block_with_a_far_slower_layer_keeps_each_layers_own_lattice() {
+fn a_far_slower_layer_goes_on_a_coarser_lattice_of_the_same_points() {
     let (below, block, above) = three_stiff_layers();
-    assert!(shape(below, &block, Some(above), 0.05).fits_one_lattice());
     let fastest = block
         .iter()
         .map(|l| l.transit_time)
@@ -186,5 +207,45 @@ fn a_block_with_a_far_slower_layer_keeps_each_layers_own_lattice() {
     slow.top = slow.length;
     slow.transit_time *= stretch;
     let with_slow = [block[0], block[1], slow];
-    assert!(!shape(below, &with_slow, Some(above), 0.05).fits_one_lattice());
+    let mut own = shape(below, &with_slow, Some(above), 0.05);
+    // (ports fine enough to hold many taps while the slow layer rings)
+    own.port_spacing = vec![1e-3 * slow.transit_time; 2];
+    assert!(own.fits_one_lattice());
+    let one = one_lattice(&own);
+    let finest = one.spacing[1];
+    for (m, (&s, &o)) in one.spacing.iter().zip(&own.spacing).enumerate() {
+        let power = (s / finest).log2();
+        assert_eq!(power, power.round(), "layer {m}: {s:e} on {finest:e}");
+        assert!(
+            o / 2.0 < s && s <= o,
+            "layer {m}: {s:e} against its own {o:e}"
+        );
+        assert_eq!(one.work_share[m], s / o);
+    }
+    assert!(one.spacing[2] / finest >= 65536.0);
+    // (a trace of three slow transits: the whole would take many
+    // hundred thousand of the fast layer's transits)
+    let until = 3000;
+    for input in 0..2 {
+        let mut a = Trace::start(&one, input);
+        a.extend(&one, 0, until);
+        let point_by_point = one_lattice_point_by_point(&own);
+        let mut b = Trace::start(&point_by_point, input);
+        b.extend(&point_by_point, 0, until);
+        // (the taps final in both)
+        let last = a
+            .final_through(&one, 0)
+            .min(b.final_through(&point_by_point, 0));
+        let last = usize::try_from(last).unwrap_or(0).min(a.taps[0].len());
+        let apart = a.taps[0][..last]
+            .iter()
+            .zip(&b.taps[0])
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0, f64::max);
+        let largest = b.taps[0].iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        assert!(
+            apart <= 1e-11 && largest > 1e-3 && last > 2000,
+            "input {input}: {apart:e} over {last} taps"
+        );
+    }
 }
