@@ -12,8 +12,8 @@
 //! vectorises; into a finer one, a point every `2^a` of its points; into
 //! a coarser one, class by class of the run's points (those `2^a` apart
 //! fall the same share of a cell past the destination's points), or,
-//! where `2^a` of them or more share a cell, summed cell by cell as at a
-//! port. Each layer's lattice is its own or up to twice as fine: the
+//! where 16 or more share a cell ([`BY_CELL_FROM`]), summed cell by cell
+//! as at a port. Each layer's lattice is its own or up to twice as fine: the
 //! trace stays first order in a spacing that halves with the ladder's,
 //! and the ladder measures it with the rest. (On the finest lattice in
 //! every lane, as first built, a slow layer held as many points a unit of
