@@ -23,20 +23,10 @@ pub fn sums<R: Real>(q: R, n: u64) -> (R, R, R) {
         };
     }
     // few terms, or terms that die fast: add them
-    if n <= 64 || q.abs() < R::of(0.5) {
-        let (mut s0, mut s1, mut s2) = (zero, zero, zero);
-        let mut p = R::one();
-        for k in 0..n {
-            let kf = R::of(k as f64);
-            s0 += p;
-            s1 += kf * p;
-            s2 += kf * kf * p;
-            p = p * q;
-            if p.abs() < R::of(1e-40) * (R::one() + s0.abs()) {
-                break;
-            }
-        }
-        return (s0, s1, s2);
+    if added(q, n) {
+        let mut terms = Terms::new(q);
+        terms.add_to(n);
+        return terms.sums;
     }
     if q < zero {
         // alternating: even terms minus odd terms, each geometric in q^2
@@ -54,6 +44,86 @@ pub fn sums<R: Real>(q: R, n: u64) -> (R, R, R) {
         return (s0, s1, s2);
     }
     positive_sums(q, n)
+}
+
+/// Whether [`sums`] adds the terms one by one (few, or dying fast).
+#[inline(always)]
+fn added<R: Real>(q: R, n: u64) -> bool {
+    n <= 64 || q.abs() < R::of(0.5)
+}
+
+/// The sums [`sums`] adds term by term, over the first `n` terms.
+#[derive(Debug, Clone, Copy)]
+struct Terms<R> {
+    q: R,
+    n: u64,
+    /// `q^n` as the products give it, and whether the terms stopped
+    /// (negligible from there on).
+    p: R,
+    stopped: bool,
+    sums: (R, R, R),
+}
+
+impl<R: Real> Terms<R> {
+    fn new(q: R) -> Self {
+        let zero = R::zero();
+        Self {
+            q,
+            n: 0,
+            p: R::one(),
+            stopped: false,
+            sums: (zero, zero, zero),
+        }
+    }
+
+    /// Adds the terms up to `n` (from the last `n`, which is not larger).
+    #[inline(always)]
+    fn add_to(&mut self, n: u64) {
+        while self.n < n && !self.stopped {
+            let (s0, s1, s2) = &mut self.sums;
+            let (k, p) = (R::of(self.n as f64), self.p);
+            *s0 += p;
+            *s1 += k * p;
+            *s2 += k * k * p;
+            self.p = p * self.q;
+            self.n += 1;
+            self.stopped = self.p.abs() < R::of(1e-40) * (R::one() + s0.abs());
+        }
+        self.n = self.n.max(n);
+    }
+}
+
+/// [`sums`] for counts asked in increasing order, the same values: where
+/// it adds the terms, from where the last count left them. A leap's
+/// trains deposited together ask for the sums at each one's start and
+/// end, in order of both, counts of up to 64 terms, each a loop over all
+/// of them (560,000 loops of 47 terms on average on seed 3's rod 5 of
+/// the layer survey at 0.1 of a transit, 6 % of its instructions).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct AscendingSums<R> {
+    terms: Terms<R>,
+}
+
+impl<R: Real> AscendingSums<R> {
+    pub(crate) fn new(q: R) -> Self {
+        Self {
+            terms: Terms::new(q),
+        }
+    }
+
+    /// `sums(q, n)`; from the start again if `n` is below the last.
+    #[inline(always)]
+    pub(crate) fn at(&mut self, n: u64) -> (R, R, R) {
+        let q = self.terms.q;
+        if n == 0 || q == R::zero() || !added(q, n) {
+            return sums(q, n);
+        }
+        if n < self.terms.n {
+            self.terms = Terms::new(q);
+        }
+        self.terms.add_to(n);
+        self.terms.sums
+    }
 }
 
 /// The sums for `0 < q` (`q != 1` allowed near 1), large `n`.
@@ -219,5 +289,43 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// [`AscendingSums`] gives `sums` to the bit, asked in increasing
+    /// order with repeats and the odd step back: ratios that die fast and
+    /// that do not, counts across the 64 terms where `sums` stops adding,
+    /// and a ratio whose terms stop (`1e-40` of the sum) within the count.
+    #[test]
+    fn ascending_sums_are_the_sums_to_the_bit() {
+        let mut s: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut next = || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            s
+        };
+        let mut asked = 0;
+        for q in [0.0, 0.3, -0.4, 0.49, -0.5, 0.9, -0.97, 0.999, 1e-30, -1e-21] {
+            let mut ascending = AscendingSums::new(q);
+            let (mut n, mut most) = (0, 0);
+            for _ in 0..300 {
+                n = match next() % 40 {
+                    0 => n / 2,
+                    1..=3 => n,
+                    _ => n + next() % 5,
+                };
+                let (a, b, c) = ascending.at(n);
+                let (x, y, z) = sums(q, n);
+                assert_eq!(
+                    (a.to_bits(), b.to_bits(), c.to_bits()),
+                    (x.to_bits(), y.to_bits(), z.to_bits()),
+                    "q = {q}, n = {n}"
+                );
+                asked += 1;
+                most = most.max(n);
+            }
+            assert!(most > 64, "q = {q}: counts up to {most} only");
+        }
+        assert_eq!(asked, 3000);
     }
 }

@@ -57,6 +57,57 @@ pub(crate) fn sort_stably<T: Copy, K: PartialOrd>(
     }
 }
 
+/// Most distinct keys [`sort_by_few_keys`] sorts by one pass each; more
+/// go to `sort_by`.
+const MOST_KEYS: usize = 8;
+
+/// Sorts `v` by `key` as a stable `sort_by` on `partial_cmp` would, where
+/// it holds at most [`MOST_KEYS`] distinct keys: a pass over a copy for
+/// each key, in increasing order (else by `sort_by`). What it is for: the
+/// trains a leap deposits together end in one of a few rounds, and sorted
+/// by them, the library's sort finds few runs and partitions. Keys are
+/// never NaN.
+pub(crate) fn sort_by_few_keys<T: Copy, K: PartialOrd + Copy>(
+    v: &mut [T],
+    scratch: &mut Vec<T>,
+    key: impl Fn(&T) -> K,
+) {
+    let mut keys = [None; MOST_KEYS];
+    let mut distinct = 0;
+    for x in v.iter() {
+        let k = key(x);
+        if keys[..distinct].contains(&Some(k)) {
+            continue;
+        }
+        if distinct == MOST_KEYS {
+            v.sort_by(|a, b| {
+                key(a)
+                    .partial_cmp(&key(b))
+                    .unwrap_or(std::cmp::Ordering::Equal)
+            });
+            return;
+        }
+        keys[distinct] = Some(k);
+        distinct += 1;
+    }
+    if distinct < 2 {
+        return;
+    }
+    let keys = &mut keys[..distinct];
+    keys.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+    scratch.clear();
+    scratch.extend_from_slice(v);
+    let mut out = 0;
+    for k in keys.iter().flatten() {
+        for x in scratch.iter() {
+            if key(x) == *k {
+                v[out] = *x;
+                out += 1;
+            }
+        }
+    }
+}
+
 /// Merges the sorted `v[..split]` and `v[split..]` stably.
 fn merge<T: Copy, K: PartialOrd>(
     v: &mut [T],
@@ -136,6 +187,38 @@ mod tests {
                     v.push((x, v.len() as u32));
                 }
             }
+            check(v);
+        }
+    }
+
+    /// [`sort_by_few_keys`] against the standard library's stable sort:
+    /// one to twelve distinct keys in random order (past eight, the
+    /// fallback), ties everywhere (stability), empty and single.
+    #[test]
+    fn sorts_by_few_keys_as_the_stable_sort_does() {
+        let check = |v: Vec<(f64, u32)>| {
+            let mut expected = v.clone();
+            expected.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap_or(std::cmp::Ordering::Equal));
+            let mut got = v.clone();
+            sort_by_few_keys(&mut got, &mut Vec::new(), |x| x.0);
+            assert_eq!(got, expected, "input {v:?}");
+        };
+        check(vec![]);
+        check(vec![(1.0, 0)]);
+        check(vec![(2.0, 0), (1.0, 1), (2.0, 2), (1.0, 3)]);
+        let mut s: u64 = 0x2545_f491_4f6c_dd1d;
+        let mut next = || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            s
+        };
+        for case in 0..600 {
+            let keys = 1 + case % 12;
+            let len = (next() % 40) as usize;
+            let v = (0..len)
+                .map(|n| ((next() % keys as u64) as f64 * 0.25 - 1.0, n as u32))
+                .collect();
             check(v);
         }
     }

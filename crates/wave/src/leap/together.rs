@@ -47,10 +47,11 @@ use super::Train;
 use super::scratch::{TogetherRoom, Work};
 use crate::engine::Tracer;
 use crate::error::WaveError;
-use crate::geometric::sums;
+use crate::geometric::{AscendingSums, sums};
 use crate::lane::{Direction, MergeRule};
-use crate::leap::crossing::{count_before_near, pow};
+use crate::leap::crossing::{count_before_near, pow, pow_small};
 use crate::real::Real;
+use crate::runs::sort_by_few_keys;
 
 /// Fewer trains than this go one by one (sorting and the tree cost more).
 const TOGETHER_FROM: usize = 4;
@@ -295,7 +296,7 @@ impl<R: Real> Tracer<R> {
             let mut to = from + 1;
             while to < work.same.len() {
                 let k0 = ((work.same[to].start - b) / period).floor().to_f64() as u64;
-                if pow(q, k0).abs() < R::of(REFERRED_AT_LEAST) {
+                if pow_small(q, k0).abs() < R::of(REFERRED_AT_LEAST) {
                     break;
                 }
                 to += 1;
@@ -328,7 +329,7 @@ impl<R: Real> Tracer<R> {
         for &t in trains {
             let d = t.start - b;
             let k0 = (d / period).floor().to_f64().max(0.0) as u64;
-            let qk = pow(q, k0);
+            let qk = pow_small(q, k0);
             let together = t.c.abs() < keep_above
                 && qk.abs() >= R::of(REFERRED_AT_LEAST)
                 && self.life_within(t.c, q, thr, 0, t.count) >= t.count;
@@ -363,6 +364,7 @@ impl<R: Real> Tracer<R> {
             members,
             by_r,
             by_end,
+            spare_ends,
             rank,
             sorted_r,
             tree,
@@ -396,17 +398,14 @@ impl<R: Real> Tracer<R> {
         // with the point's instead, a birth on a lattice point was counted
         // there and not taken back (a front's jump too many, found by the
         // momentum balance of `tests/leaps.rs`).
+        // (taken in order of `r`, by the round alone is by both: the
+        // rounds take one of a few values)
         by_end.clear();
-        by_end.extend(
-            members
-                .iter()
-                .enumerate()
-                .map(|(k, p)| (p.k0 + p.count, p.r, k)),
-        );
-        by_end.sort_by(|x, y| {
-            x.0.cmp(&y.0)
-                .then(x.1.partial_cmp(&y.1).unwrap_or(std::cmp::Ordering::Equal))
-        });
+        by_end.extend(by_r.iter().map(|&(r, k)| {
+            let p = &members[k];
+            (p.k0 + p.count, r, k)
+        }));
+        sort_by_few_keys(by_end, spare_ends, |e| e.0);
         // the formula's lattice points: after the earliest start, up to the
         // latest last birth
         let latest_last = members
@@ -417,6 +416,8 @@ impl<R: Real> Tracer<R> {
         let j_cut = (latest_last / w).floor();
         let mut tree = Fenwick::new(m, tree);
         let mut g = Geometric::new(q);
+        // (the trains start and end in order of their rounds)
+        let (mut start_sums, mut end_sums) = (AscendingSums::new(q), AscendingSums::new(q));
         let (mut total_c, mut total_cr) = (R::zero(), R::zero());
         let (mut off_jump, mut off_moment) = (R::zero(), R::zero());
         let (mut jump_before, mut moment_before) = (R::zero(), R::zero());
@@ -430,7 +431,7 @@ impl<R: Real> Tracer<R> {
             let x = j * w;
             while started < m && members[started].start < x {
                 let p = members[started];
-                let (g0, g1, _) = sums(q, p.k0);
+                let (g0, g1, _) = start_sums.at(p.k0);
                 tree.add(rank[started], (p.scaled, p.scaled * p.r));
                 total_c += p.scaled;
                 total_cr += p.scaled * p.r;
@@ -446,7 +447,7 @@ impl<R: Real> Tracer<R> {
                 round < k || (round == k && r < phi)
             } {
                 let p = members[by_end[ended].2];
-                let (g0, g1, _) = sums(q, p.k0 + p.count);
+                let (g0, g1, _) = end_sums.at(p.k0 + p.count);
                 tree.add(rank[by_end[ended].2], (-p.scaled, -p.scaled * p.r));
                 total_c -= p.scaled;
                 total_cr -= p.scaled * p.r;
@@ -483,6 +484,10 @@ impl<R: Real> Tracer<R> {
         let (phi, k) = split;
         let mut merged = 0u64;
         let mut tail_sums = Remembered::default();
+        // (the trains' first tail cells hold nearly the same count, from
+        // nearly the same round: each train's is the guess and the power
+        // for the next)
+        let (mut first_count, mut first_power) = (0, None);
         for (index, p) in members.iter().enumerate() {
             merged += p.count;
             let from = if index < started {
@@ -493,13 +498,23 @@ impl<R: Real> Tracer<R> {
             };
             // cell by cell in closed form, as `emit` does
             let mut i = from;
-            let mut amp = p.c * pow(q, from);
-            let mut n = 0;
+            let q_from = match first_power {
+                Some((k, qk)) if k == from => qk,
+                _ => pow(q, from),
+            };
+            first_power = Some((from, q_from));
+            let mut amp = p.c * q_from;
+            let mut n = first_count;
+            let mut first_cell = true;
             while i < p.count {
                 let born = p.start + R::of(i as f64) * period;
                 let cell = (born / w).floor();
                 let (lo, hi) = (cell * w, (cell + R::one()) * w);
-                n = count_before_near(born, period, hi, n).clamp(1, p.count - i);
+                let counted = count_before_near(born, period, hi, n);
+                if first_cell {
+                    (first_count, first_cell) = (counted, false);
+                }
+                n = counted.clamp(1, p.count - i);
                 let (s0, s1, qn) = tail_sums.get(q, n);
                 let jump = amp * s0;
                 let at_hi = amp * ((born - lo) * s0 + period * s1) / w;
