@@ -183,6 +183,8 @@ pub struct Tracer<R: Real> {
     pub(crate) ln_memo: Option<(R, R)>,
     /// One lane's deposits as a leap places them, kept for the next.
     pub(crate) batch: Vec<(R, R)>,
+    /// A lane's deposits summed point by point (`lane::sum_on_points`).
+    pub(crate) point_sums: Vec<R>,
     /// The buffers of a leap's trains deposited together, kept for the next.
     pub(crate) together: crate::leap::TogetherRoom<R>,
     /// Fronts a lane merges as a leap places them, kept for the next.

@@ -24,6 +24,7 @@ mod points;
 mod trains;
 
 pub(crate) use fifo::Fifo;
+pub(crate) use lattice::sum_on_points;
 pub(crate) use points::LatticePoints;
 
 pub(crate) use given::{Given, foresee};

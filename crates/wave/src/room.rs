@@ -27,6 +27,7 @@ pub(crate) struct Room<R> {
     pub(crate) exact_trains: ExactTrains<R>,
     pub(crate) scratch: LeapScratch<R>,
     pub(crate) batch: Vec<(R, R)>,
+    pub(crate) point_sums: Vec<R>,
     pub(crate) together: TogetherRoom<R>,
     pub(crate) spare_fronts: Vec<Front<R>>,
 }
@@ -39,6 +40,7 @@ impl<R: Real> Room<R> {
             + self.exact_trains.bytes()
             + self.scratch.bytes()
             + vec_bytes(&self.batch)
+            + vec_bytes(&self.point_sums)
             + self.together.bytes()
             + vec_bytes(&self.spare_fronts)
     }
@@ -95,6 +97,8 @@ impl<R: Real> Tracer<R> {
         exact_trains.clear();
         let mut batch = take(&mut self.batch);
         batch.clear();
+        let mut point_sums = take(&mut self.point_sums);
+        point_sums.clear();
         let mut spare_fronts = take(&mut self.spare_fronts);
         spare_fronts.clear();
         Room {
@@ -103,6 +107,7 @@ impl<R: Real> Tracer<R> {
             exact_trains,
             scratch: take(&mut self.scratch).emptied(),
             batch,
+            point_sums,
             together: take(&mut self.together).emptied(),
             spare_fronts,
         }

@@ -195,6 +195,7 @@ impl<R: Real> Tracer<R> {
             scratch: room.scratch,
             ln_memo: None,
             batch: room.batch,
+            point_sums: room.point_sums,
             together: room.together,
             spare_fronts: room.spare_fronts,
             blocks: crate::block::Blocks::default(),

@@ -9,7 +9,7 @@ use super::exact::Placed;
 use crate::engine::Tracer;
 use crate::error::WaveError;
 use crate::geometric::sums;
-use crate::lane::{Direction, Lane, MergeRule, Ring, Trains, foresee};
+use crate::lane::{Direction, Lane, MergeRule, Ring, Trains, foresee, sum_on_points};
 use crate::real::Real;
 use crate::runs::sort_stably;
 use crate::window::Window;
@@ -281,6 +281,9 @@ impl<R: Real> Tracer<R> {
         for lane in lanes {
             batch.clear();
             batch.extend(all.iter().filter(|d| d.0 == lane).map(|d| (d.1, d.2)));
+            if let MergeRule::Lattice { spacing, .. } = self.lanes[lane].rule {
+                sum_on_points(&mut batch, spacing, &mut self.point_sums);
+            }
             self.lanes[lane].place_all(&mut batch, &mut self.spare_fronts);
             self.reschedule_layer(self.lanes[lane].layer)?;
         }
