@@ -20,6 +20,7 @@ largest peak memory (the process's resident set, from `wait4`).
     python3 scripts/survey-layers.py --materials --seed 5   # stacks of the table's real materials, SI units
     python3 scripts/survey-layers.py --exact-events 8e6   # merged bounds against exact runs
     python3 scripts/survey-layers.py --fine-budget 1e8    # merged bounds against finer ladders
+    python3 scripts/survey-layers.py --against old/impact # this binary beside another, rod by rod
 
 With --exact-events N, each rod whose default run merged fronts is run again
 exactly (`--resolution exact --max-events N`); where that finishes, the line
@@ -36,6 +37,15 @@ two differ by at most the sum of both bounds. A fine run whose own bound
 is not under a quarter of the default's says little about it and is
 counted apart ("inconclusive"), as is one that does not finish within
 --timeout; the summary counts both, and exit 1 if a conclusive check failed.
+
+With --against OTHER, each rod is run with the binary OTHER too, one run
+each, alternately first and second (the machine's drift then falls on both
+alike): the line adds OTHER's time and how far `e` moved, in units of the
+sum of the two bounds ("same" when `e` and the bound are the same to the
+bit), and the summary sets OTHER's median, 90th percentile, slowest and
+count over 1 s beside this binary's, with how many rods moved and the
+largest move. What a change to the engine does to speed and to results, in
+one sitting.
 
 Not run by CI (minutes, and timings). Needs only Python 3 and the binary
 (cargo builds it when target/release/impact is missing).
@@ -198,6 +208,8 @@ def main():
                         help="draw stacks of the table's real materials in SI units instead (see draw_materials)")
     parser.add_argument("--keep", type=Path, metavar="DIR",
                         help="write each rod's scene to DIR/rodNNN.json (to rerun one alone)")
+    parser.add_argument("--against", metavar="OTHER",
+                        help="run each rod with the binary OTHER too, alternately first, and compare")
     args = parser.parse_args()
     if args.rods < 1 or args.timeout <= 0 or not 0 < args.speeds <= 12 or not 0 <= args.exact_events < 1e15 \
             or not 0 <= args.fine_budget < 1e15:
@@ -207,6 +219,9 @@ def main():
         return 2
 
     impact = os.environ.get("IMPACT") or str(ROOT / "target/release/impact")
+    if args.against and not os.access(args.against, os.X_OK):
+        print(f"error: --against {args.against}: not an executable file", file=sys.stderr)
+        return 2
     if not os.access(impact, os.X_OK):
         print("== building impact (cargo build --release)", flush=True)
         subprocess.run(["cargo", "build", "--release", "--locked", "--quiet"], cwd=ROOT, check=True)
@@ -220,6 +235,7 @@ def main():
     peak, peak_rod, peak_floor, floor = 0.0, None, 0.0, 0.0
     checked, held, closest = 0, 0, 0.0
     fine_checked, fine_held, fine_closest, fine_open = 0, 0, 0.0, 0
+    other_times, moved, furthest = [], 0, (0.0, None)
     print(f"rod  layers  ratio      seconds       events     MiB  e             bound")
     with tempfile.TemporaryDirectory(prefix="impact-survey-") as work:
         for k in range(args.rods):
@@ -235,9 +251,14 @@ def main():
             transits = [length / math.sqrt(modulus / density)
                         for length, modulus, density in (resolved(l, table) for l in scene["layers"])]
             ratio = max(transits) / min(transits)
+            other = None
             try:
+                if args.against and k % 2 == 0:
+                    other = run_other(args.against, path, args.timeout)
                 code, stdout, stderr, seconds, mib, at_least = run_measured(
                     [impact, "run", str(path), "--json"], args.timeout)
+                if args.against and k % 2 == 1:
+                    other = run_other(args.against, path, args.timeout)
             except subprocess.TimeoutExpired:
                 unfinished += 1
                 print(f"{k:3d}  {len(transits):6d}  {ratio:9.1e}  over {args.timeout:.0f} s (stopped)", flush=True)
@@ -277,6 +298,20 @@ def main():
                     fine_checked += 1
                     fine_held += share[1]
                     fine_closest = max(fine_closest, share[0])
+            if other is not None:
+                other_seconds, theirs = other
+                other_times.append(other_seconds)
+                if theirs is None:
+                    exact += f"  against: {other_seconds:.2f} s, failed or over --timeout"
+                elif (theirs["restitution"], theirs["error_bound"]) == (out["restitution"], out["error_bound"]):
+                    exact += f"  against: {other_seconds:.2f} s, same"
+                else:
+                    moved += 1
+                    both = out["error_bound"] + theirs["error_bound"]
+                    share = abs(out["restitution"] - theirs["restitution"]) / both if both > 0 else math.inf
+                    furthest = max(furthest, (share, k), key=lambda x: x[0])
+                    exact += (f"  against: {other_seconds:.2f} s, e {theirs['restitution']:.10f} "
+                              f"± {theirs['error_bound']:.1e}, moved {share:.2g} of the two bounds")
             print(f"{k:3d}  {len(transits):6d}  {ratio:9.1e}  {seconds:7.2f}  {out['events']:11d}  "
                   f"{shown}  {out['restitution']:.10f}  {out['error_bound']:.1e}{exact}", flush=True)
     times.sort()
@@ -301,7 +336,32 @@ def main():
               + (f" (the furthest at {fine_closest:.2f} of the default bound)" if fine_checked else "")
               + f"; {fine_open} inconclusive (fine bound not under a quarter of the default's, or over "
               f"--timeout)")
+    if args.against:
+        theirs = sorted(other_times)
+        print(f"against {args.against}, the same {len(theirs)} rods: median {spread(theirs)} "
+              f"(this binary: {spread(times)}); {moved} moved e or its bound"
+              + (f", the furthest by {furthest[0]:.2g} of the sum of the two bounds (rod {furthest[1]})"
+                 if moved else ""))
     return 1 if failed or held < checked or fine_held < fine_checked else 0
+
+
+def run_other(binary, path, timeout):
+    """`binary run path --json`: its seconds and output (None if it failed
+    or ran over `timeout`)."""
+    try:
+        code, stdout, _, seconds, _, _ = run_measured([binary, "run", str(path), "--json"], timeout)
+    except subprocess.TimeoutExpired:
+        return timeout, None
+    return seconds, json.loads(stdout) if code == 0 else None
+
+
+def spread(times):
+    """Median, 90th percentile, slowest and count over 1 s of sorted times."""
+    if not times:
+        return "none"
+    p90 = times[min(len(times) - 1, int(0.9 * len(times)))]
+    return (f"{statistics.median(times):.2f} s, 90th percentile {p90:.2f} s, slowest {max(times):.2f} s, "
+            f"{sum(t > 1.0 for t in times)} over 1 s")
 
 
 if __name__ == "__main__":
