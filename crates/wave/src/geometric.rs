@@ -297,13 +297,7 @@ mod tests {
     /// and a ratio whose terms stop (`1e-40` of the sum) within the count.
     #[test]
     fn ascending_sums_are_the_sums_to_the_bit() {
-        let mut s: u64 = 0x9e37_79b9_7f4a_7c15;
-        let mut next = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            s
-        };
+        let mut next = crate::test_random::xorshift(0x9e37_79b9_7f4a_7c15u64);
         let mut asked = 0;
         for q in [0.0, 0.3, -0.4, 0.49, -0.5, 0.9, -0.97, 0.999, 1e-30, -1e-21] {
             let mut ascending = AscendingSums::new(q);

@@ -206,13 +206,7 @@ mod tests {
         check(vec![]);
         check(vec![(1.0, 0)]);
         check(vec![(2.0, 0), (1.0, 1), (2.0, 2), (1.0, 3)]);
-        let mut s: u64 = 0x2545_f491_4f6c_dd1d;
-        let mut next = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            s
-        };
+        let mut next = crate::test_random::xorshift(0x2545_f491_4f6c_dd1du64);
         for case in 0..600 {
             let keys = 1 + case % 12;
             let len = (next() % 40) as usize;

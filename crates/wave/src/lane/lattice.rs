@@ -471,13 +471,7 @@ mod tests {
     #[test]
     fn deposits_are_summed_on_their_points_in_the_order_they_came() {
         let w = 0.1 / 3.0;
-        let mut s: u64 = 0x853c_49e6_748f_ea9b;
-        let mut next = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            s
-        };
+        let mut next = crate::test_random::xorshift(0x853c_49e6_748f_ea9bu64);
         let mut sums = Vec::new();
         for case in 0..300 {
             let base = 1_000_000 * (case % 3) as i64;
