@@ -142,19 +142,29 @@ fn merge<T: Copy, K: PartialOrd>(
 mod tests {
     use super::*;
 
+    /// A pair sorted by its first element, which the second tags.
+    type Tagged = (f64, u32);
+
+    /// A sort under test: the runs' or by few keys.
+    type Sort = fn(&mut [Tagged], &mut Vec<Tagged>, fn(&Tagged) -> f64);
+
+    /// `sort` on `v` gives the standard library's stable sort by the
+    /// first element.
+    fn check(sort: Sort, v: Vec<Tagged>) {
+        let mut expected = v.clone();
+        expected.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap_or(std::cmp::Ordering::Equal));
+        let mut got = v.clone();
+        sort(&mut got, &mut Vec::new(), |x| x.0);
+        assert_eq!(got, expected, "input {v:?}");
+    }
+
     /// Against the standard library's stable sort: sorted input, runs
     /// with ties across them (stability), more runs than are merged (the
     /// fallback), and the empty and single cases; pseudo-random sequences
     /// of one to twelve runs.
     #[test]
     fn sorts_as_the_stable_sort_does() {
-        let check = |v: Vec<(f64, u32)>| {
-            let mut expected = v.clone();
-            expected.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap_or(std::cmp::Ordering::Equal));
-            let mut got = v.clone();
-            sort_stably(&mut got, &mut Vec::new(), |x| x.0);
-            assert_eq!(got, expected, "input {v:?}");
-        };
+        let check = |v| check(sort_stably, v);
         check(vec![]);
         check(vec![(1.0, 0)]);
         check(vec![(1.0, 0), (2.0, 1), (2.0, 2), (3.0, 3)]);
@@ -169,13 +179,7 @@ mod tests {
         check(vec![(3.0, 0), (1.0, 1), (2.0, 2), (0.0, 3)]);
         check(vec![(2.0, 0), (2.0, 1), (1.0, 2), (2.0, 3), (2.0, 4)]);
         // xorshift: runs of random lengths, values with many ties
-        let mut s: u64 = 0x9e37_79b9_7f4a_7c15;
-        let mut next = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            s
-        };
+        let mut next = crate::test_random::xorshift(0x9e37_79b9_7f4a_7c15u64);
         for case in 0..600 {
             let runs = 1 + case % 12;
             let mut v = Vec::new();
@@ -196,13 +200,7 @@ mod tests {
     /// fallback), ties everywhere (stability), empty and single.
     #[test]
     fn sorts_by_few_keys_as_the_stable_sort_does() {
-        let check = |v: Vec<(f64, u32)>| {
-            let mut expected = v.clone();
-            expected.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap_or(std::cmp::Ordering::Equal));
-            let mut got = v.clone();
-            sort_by_few_keys(&mut got, &mut Vec::new(), |x| x.0);
-            assert_eq!(got, expected, "input {v:?}");
-        };
+        let check = |v| check(sort_by_few_keys, v);
         check(vec![]);
         check(vec![(1.0, 0)]);
         check(vec![(2.0, 0), (1.0, 1), (2.0, 2), (1.0, 3)]);
