@@ -27,12 +27,7 @@ pub(crate) fn sort_stably<T: Copy, K: PartialOrd>(
         if key(&v[i]) < key(&v[i - 1]) {
             runs += 1;
             if runs == MOST_RUNS {
-                v.sort_by(|a, b| {
-                    key(a)
-                        .partial_cmp(&key(b))
-                        .unwrap_or(std::cmp::Ordering::Equal)
-                });
-                return;
+                return sort_by_key(v, &key);
             }
             bounds[runs] = i;
         }
@@ -80,12 +75,7 @@ pub(crate) fn sort_by_few_keys<T: Copy, K: PartialOrd + Copy>(
             continue;
         }
         if distinct == MOST_KEYS {
-            v.sort_by(|a, b| {
-                key(a)
-                    .partial_cmp(&key(b))
-                    .unwrap_or(std::cmp::Ordering::Equal)
-            });
-            return;
+            return sort_by_key(v, &key);
         }
         keys[distinct] = Some(k);
         distinct += 1;
@@ -106,6 +96,16 @@ pub(crate) fn sort_by_few_keys<T: Copy, K: PartialOrd + Copy>(
             }
         }
     }
+}
+
+/// The library's stable sort by `key` (never NaN): what both sorts fall
+/// back on.
+fn sort_by_key<T, K: PartialOrd>(v: &mut [T], key: &impl Fn(&T) -> K) {
+    v.sort_by(|a, b| {
+        key(a)
+            .partial_cmp(&key(b))
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
 }
 
 /// Merges the sorted `v[..split]` and `v[split..]` stably.
