@@ -134,13 +134,18 @@ impl<R: Real> Tracer<R> {
             from_above
         };
         let mut late = std::mem::take(&mut self.blocks.late);
-        late.clear();
+        late.spawned.clear();
+        late.deposited.clear();
         let (work, folded) = self.blocks.list[bi].arrive(input, t, d, &mut late);
         self.leap_work += work / ADDS_PER_WORK;
         self.drops.truncation.merged_fronts += folded;
-        for &(o, born, jump) in &late {
+        for &(o, born, jump) in &late.spawned {
             let (layer, dir) = self.blocks.list[bi].ports[o].out;
             self.spawn(layer, dir, born, jump, &[])?;
+        }
+        for &(o, born, jump) in &late.deposited {
+            let (layer, dir) = self.blocks.list[bi].ports[o].out;
+            self.spawn_deposited(layer, dir, born, jump)?;
         }
         self.blocks.late = late;
         for o in 0..self.blocks.list[bi].ports.len() {

@@ -17,16 +17,26 @@
 //! / h`), summed in another order. Fronts under the drop threshold, which
 //! the lane would have dropped one by one (and counted as dropped in the
 //! error estimate), are summed with the rest instead.
+//!
+//! Where the earlier of its two points is the one the port delivered
+//! last, which is nearly always so when the neighbour's lattice is far
+//! coarser than the response's delays, that point is already in the
+//! lane: its share is summed `behind` and the caller deposits the sum
+//! there at the arrival, one deposit for all the arrival's fronts.
 
 use crate::lane::Fifo;
 use crate::real::Real;
 
 /// Jumps added on a port's lattice points from `from` on, to be delivered
-/// with those points' sums.
+/// with those points' sums, and what falls on the point delivered last.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Folded<R> {
     from: i64,
     jumps: Fifo<R>,
+    /// The lower shares on the point before `next`, which the lane holds
+    /// already: taken by [`Folded::take_behind`] and deposited there at
+    /// once, one deposit for the arrival's fronts instead of one each.
+    behind: R,
 }
 
 impl<R: Real> Folded<R> {
@@ -36,16 +46,28 @@ impl<R: Real> Folded<R> {
 
     /// A jump born at `x` lattice spacings, split between its two points
     /// as a lattice lane deposits it (`lane/lattice.rs`), if its earlier
-    /// point is `next` or later; false if that point has been delivered
-    /// (the jump is then left to its caller).
+    /// point is `next - 1` or later (that point's share goes `behind`);
+    /// false if it is earlier (the jump is then left to its caller).
     #[inline]
     pub(crate) fn deposit(&mut self, x: R, jump: R, next: i64) -> bool {
         let k = x.floor();
         let f = x - k;
         let k = k.to_f64() as i64;
-        if k < next {
+        if k < next - 1 {
             return false;
         }
+        let (lower, upper) = (jump * (R::one() - f), jump * f);
+        if k < next {
+            self.behind += lower;
+        } else {
+            self.add_on(k, lower);
+        }
+        self.add_on(k + 1, upper);
+        true
+    }
+
+    /// Adds `jump` on point `k`, holding the points from `k` on.
+    fn add_on(&mut self, k: i64, jump: R) {
         if self.jumps.is_empty() {
             self.from = k;
         }
@@ -60,12 +82,15 @@ impl<R: Real> Folded<R> {
             self.from = k;
         }
         let i = usize::try_from(k - self.from).unwrap_or(0);
-        while self.jumps.len() <= i + 1 {
+        while self.jumps.len() <= i {
             self.jumps.push_back(R::zero());
         }
-        self.jumps[i] += jump * (R::one() - f);
-        self.jumps[i + 1] += jump * f;
-        true
+        self.jumps[i] += jump;
+    }
+
+    /// What was put on the point before `next` since the last call, taken.
+    pub(crate) fn take_behind(&mut self) -> R {
+        std::mem::replace(&mut self.behind, R::zero())
     }
 
     /// What point `m` holds, taken; the points before it must have been
@@ -110,12 +135,20 @@ mod tests {
         assert_eq!(taken[2], 0.0, "{taken:?}");
     }
 
-    /// A jump whose earlier point was delivered is refused and nothing is
-    /// held; one born before the earliest held point goes before it.
+    /// A jump whose earlier point is the last delivered puts its share
+    /// there `behind`, the rest on the next point; one from before that is
+    /// refused and nothing is held; one born before the earliest held
+    /// point goes before it.
     #[test]
     fn a_delivered_point_is_refused() {
         let mut folded = Folded::<f64>::default();
-        assert!(!folded.deposit(1.8, 1.0, 2));
+        assert!(!folded.deposit(0.8, 1.0, 2));
+        assert!(folded.is_empty());
+        assert_eq!(folded.take_behind(), 0.0);
+        assert!(folded.deposit(1.75, 2.0, 2));
+        assert_eq!(folded.take_behind(), 0.5);
+        assert_eq!(folded.take_behind(), 0.0);
+        assert_eq!(folded.take(2), 1.5);
         assert!(folded.is_empty());
         assert!(folded.deposit(4.0, 1.0, 2));
         assert!(folded.deposit(2.0, 1.0, 2));

@@ -139,7 +139,7 @@ pub(crate) struct Inner<R> {
     /// fronts through the block decide contacts).
     large: Box<Block<R>>,
     due: Vec<(R, R)>,
-    late: Vec<(usize, R, R)>,
+    late: crate::block::Late<R>,
 }
 
 impl<R: Real> Inner<R> {
@@ -168,7 +168,7 @@ impl<R: Real> Inner<R> {
             block: Box::new(block),
             large: Box::new(large),
             due: Vec::new(),
-            late: Vec::new(),
+            late: crate::block::Late::default(),
         }
     }
 }
@@ -217,13 +217,15 @@ impl<R: Real> Trace<R> {
             return;
         };
         let mut late = std::mem::take(&mut inner.late);
-        late.clear();
+        late.spawned.clear();
         let mut work = 0;
         for &(at, d) in arrivals {
             work += inner.block.arrive(input, at, d, &mut late).0;
         }
+        // (a nested block folds nothing: its large fronts are followed)
+        debug_assert!(late.deposited.is_empty());
         self.followed += work / FRONT_ADDS;
-        for &(o, born, jump) in &late {
+        for &(o, born, jump) in &late.spawned {
             self.place_delivery(shape, o, born, jump);
         }
         if let Some(inner) = self.inner.as_mut() {
