@@ -129,11 +129,18 @@ impl<R: Real> EventQueue<R> {
             });
         }
         let code = self.code(key);
-        self.queued[code as usize] = true;
+        let was_queued = std::mem::replace(&mut self.queued[code as usize], true);
         match &mut self.ringing {
             Some(ringing) if ringing.1 == code => ringing.0 = time.key(),
             _ => {
-                self.heap.push(code, Reverse((time.key(), code)));
+                let order = Reverse((time.key(), code));
+                // (a block's port reschedules its next delivery at every
+                // arrival, nearly always to the same time: a lookup then,
+                // not the heap's sift)
+                if was_queued && self.heap.get_priority(&code) == Some(&order) {
+                    return Ok(());
+                }
+                self.heap.push(code, order);
             }
         }
         Ok(())
