@@ -440,6 +440,14 @@ pub(crate) struct Late<R> {
     pub deposited: Vec<(usize, R, R)>,
 }
 
+impl<R> Late<R> {
+    /// Empties both lists, keeping their room for the next arrival.
+    pub(crate) fn clear(&mut self) {
+        self.spawned.clear();
+        self.deposited.clear();
+    }
+}
+
 impl<R> Default for Late<R> {
     fn default() -> Self {
         Self {

@@ -134,8 +134,7 @@ impl<R: Real> Tracer<R> {
             from_above
         };
         let mut late = std::mem::take(&mut self.blocks.late);
-        late.spawned.clear();
-        late.deposited.clear();
+        late.clear();
         let (work, folded) = self.blocks.list[bi].arrive(input, t, d, &mut late);
         self.leap_work += work / ADDS_PER_WORK;
         self.drops.truncation.merged_fronts += folded;

@@ -217,7 +217,7 @@ impl<R: Real> Trace<R> {
             return;
         };
         let mut late = std::mem::take(&mut inner.late);
-        late.spawned.clear();
+        late.clear();
         let mut work = 0;
         for &(at, d) in arrivals {
             work += inner.block.arrive(input, at, d, &mut late).0;
