@@ -96,6 +96,11 @@ pub(crate) struct Trace<R> {
     kept: Vec<(R, R, usize)>,
     /// The points of a lane being taken (room kept from step to step).
     run: Vec<R>,
+    /// The swept layer's down lane's points being taken (room kept).
+    run_down: Vec<R>,
+    /// On one lattice: the layer swept point by point within each step
+    /// (`one_lattice/sweep.rs`).
+    swept: Option<usize>,
     /// A run's arrivals at the nested layer, `(time, jump)` (room kept).
     arrivals: Vec<(R, R)>,
     /// How many were ever kept.
@@ -106,7 +111,8 @@ pub(crate) struct Trace<R> {
     pub reached: R,
     /// The trace's step: no front born within it arrives within it (a
     /// front is born at most a spacing before its birth on the lattice,
-    /// and travels a transit).
+    /// and travels a transit), but in the swept layer, whose points are
+    /// taken in time order within it (`one_lattice/sweep.rs`).
     step: R,
     /// Nothing the block holds matters any more: the taps are final.
     pub done: bool,
@@ -160,9 +166,11 @@ impl<R: Real> Trace<R> {
         // fronts too small to follow, and when to stop, in velocity per
         // unit input (the input's velocity jump is `c_in`)
         let stop = R::of(REST) * shape.port_speed[input];
-        let step = match shape.nest {
-            Some(f) => Self::nested_step(shape, f),
-            None => shape
+        let swept = shape.swept_layer();
+        let step = match (shape.nest, swept) {
+            (Some(f), _) => Self::nested_step(shape, f),
+            (None, Some((_, step))) => step,
+            (None, None) => shape
                 .layers
                 .iter()
                 .zip(&shape.spacing)
@@ -175,6 +183,8 @@ impl<R: Real> Trace<R> {
             exact: vec![Vec::new(); shape.port_spacing.len()],
             kept: Vec::new(),
             run: Vec::new(),
+            run_down: Vec::new(),
+            swept: swept.map(|(f, _)| f),
             arrivals: Vec::new(),
             kept_ever: 0,
             keep: if shape.keep_exact {
@@ -335,7 +345,7 @@ impl<R: Real> Trace<R> {
             match &shape.powers {
                 Some(powers) => {
                     for i in 0..self.lanes.len() {
-                        if self.taken_until[i] < end {
+                        if self.taken_until[i] < end && Some(i / 2) != self.swept {
                             // every point born before `reached` less a
                             // cell is final: a slow lane takes them all
                             let (s, t) = (shape.spacing[i / 2], shape.layers[i / 2].transit_time);
@@ -343,6 +353,9 @@ impl<R: Real> Trace<R> {
                             self.take_lane_shifted(shape, i, until, powers);
                             self.taken_until[i] = until;
                         }
+                    }
+                    if let Some(f) = self.swept {
+                        self.sweep(shape, f, end, powers);
                     }
                 }
                 None => {

@@ -170,7 +170,13 @@ impl<T: Copy> Fifo<T> {
     /// Inserts `item` at position `i` among the items (`0`: the oldest).
     pub fn insert(&mut self, i: usize, item: T) {
         assert!(i <= self.len(), "insertion index {i} beyond {}", self.len());
-        self.items.insert(self.head + i, item);
+        if i == 0 && self.head > 0 {
+            // before the oldest, where a taken item was: no move
+            self.head -= 1;
+            self.items[self.head] = item;
+        } else {
+            self.items.insert(self.head + i, item);
+        }
     }
 
     pub fn extend(&mut self, items: impl IntoIterator<Item = T>) {
@@ -231,7 +237,12 @@ mod tests {
                 7..=11 => assert_eq!(fifo.pop_front(), deque.pop_front()),
                 12 => assert_eq!(fifo.pop_back(), deque.pop_back()),
                 13 => {
-                    let i = (next() as usize) % (deque.len() + 1);
+                    // (before the oldest half the time: into a taken slot
+                    // where the head has moved)
+                    let i = match next() % 2 {
+                        0 => 0,
+                        _ => (next() as usize) % (deque.len() + 1),
+                    };
                     fifo.insert(i, step);
                     deque.insert(i, step);
                 }

@@ -104,7 +104,7 @@ impl<R: Real> LatticePoints<R> {
 
     /// Makes the lane hold points `from` to `to` (zeros where it held
     /// none).
-    fn cover(&mut self, from: i64, to: i64) {
+    pub(crate) fn cover(&mut self, from: i64, to: i64) {
         if self.points.is_empty() {
             self.base = from;
         }

@@ -23,6 +23,9 @@
 //! trace.) The fastest layer is not nested (`nested.rs`): its neighbours'
 //! lattices are its own.
 //!
+//! A layer far faster than the rest of its block is swept point by point
+//! within the others' step (`sweep.rs`), not taken a few points a step.
+//!
 //! What a traced point costs in the work the budget counts stays what the
 //! fronts it stands for on the layer's own lattice cost, so a ladder runs
 //! the levels it ran before; and what the block still holds is summed no
@@ -31,6 +34,7 @@
 use super::{Shape, Trace};
 use crate::real::Real;
 
+mod sweep;
 #[cfg(test)]
 mod tests;
 
@@ -133,45 +137,8 @@ impl<R: Real> Trace<R> {
         self.taken_since += n;
         let from = (first, s, transit);
         let top = shape.layers.len() - 1;
-        let shifted = |trace: &mut Self, (d, up): (usize, bool), coef: R| {
-            let lane = &mut trace.lanes[2 * d + usize::from(!up)];
-            // the run's arrivals in the destination's cells
-            let cells = transit * shape.per_spacing[d];
-            if powers[m] >= powers[d] {
-                // every point the same share of a cell past one of its
-                // points, `stride` of them apart
-                let stride = 1usize << (powers[m] - powers[d]);
-                let whole = cells.floor();
-                let share = cells - whole;
-                let to = first * stride as i64 + whole.to_f64() as i64;
-                lane.add_strided(to, stride, &run, coef * (R::one() - share), coef * share);
-            } else if powers[d] - powers[m] < BY_CELL_FROM {
-                // the points `every` apart fall the same share of a cell
-                // past the destination's points: each class's share once
-                let every = 1usize << (powers[d] - powers[m]);
-                let per = R::one() / R::of(every as f64);
-                let at = R::of(first as f64) * per + cells;
-                let whole = at.floor();
-                let mut shares = [(0, R::zero(), R::zero()); 1 << (BY_CELL_FROM - 1)];
-                for (c, s) in shares[..every].iter_mut().enumerate() {
-                    let past = (at - whole) + R::of(c as f64) * per;
-                    let (off, share) = if past >= R::one() {
-                        (1, past - R::one())
-                    } else {
-                        (0, past)
-                    };
-                    *s = (off, coef * (R::one() - share), coef * share);
-                }
-                lane.add_classes(whole.to_f64() as i64, &run, &shares[..every]);
-            } else {
-                // many points to a cell: summed apart, as at a port
-                let per = R::one() / R::of(2f64.powi((powers[d] - powers[m]) as i32));
-                let start = R::of(first as f64) * per + cells;
-                by_cell(&run, start, per, |k, lower, upper| {
-                    lane.add(k as i64, coef * lower);
-                    lane.add(k as i64 + 1, coef * upper);
-                });
-            }
+        let shifted = |trace: &mut Self, to: (usize, bool), coef: R| {
+            trace.land_shifted(shape, powers, (m, first), &run, to, coef);
         };
         match (up, m) {
             (true, m) if m < top => {
@@ -198,6 +165,59 @@ impl<R: Real> Trace<R> {
             }
         }
         self.run = run;
+    }
+
+    /// The fronts `coef * x` that the points `x` of a run of layer `m`'s
+    /// lane (from its lattice point `first` on) cause in lane (`d`, up or
+    /// down), landed shifted by the layer's transit.
+    pub(super) fn land_shifted(
+        &mut self,
+        shape: &Shape<R>,
+        powers: &[u32],
+        (m, first): (usize, i64),
+        run: &[R],
+        (d, up): (usize, bool),
+        coef: R,
+    ) {
+        let transit = shape.layers[m].transit_time;
+        let lane = &mut self.lanes[2 * d + usize::from(!up)];
+        // the run's arrivals in the destination's cells
+        let cells = transit * shape.per_spacing[d];
+        if powers[m] >= powers[d] {
+            // every point the same share of a cell past one of its
+            // points, `stride` of them apart
+            let stride = 1usize << (powers[m] - powers[d]);
+            let whole = cells.floor();
+            let share = cells - whole;
+            let to = first * stride as i64 + whole.to_f64() as i64;
+            lane.add_strided(to, stride, run, coef * (R::one() - share), coef * share);
+        } else if powers[d] - powers[m] < BY_CELL_FROM {
+            // the points `every` apart fall the same share of a cell
+            // past the destination's points: each class's share once
+            let every = 1usize << (powers[d] - powers[m]);
+            let per = R::one() / R::of(every as f64);
+            let at = R::of(first as f64) * per + cells;
+            let whole = at.floor();
+            let mut shares = [(0, R::zero(), R::zero()); 1 << (BY_CELL_FROM - 1)];
+            for (c, s) in shares[..every].iter_mut().enumerate() {
+                let past = (at - whole) + R::of(c as f64) * per;
+                let (off, share) = if past >= R::one() {
+                    (1, past - R::one())
+                } else {
+                    (0, past)
+                };
+                *s = (off, coef * (R::one() - share), coef * share);
+            }
+            lane.add_classes(whole.to_f64() as i64, run, &shares[..every]);
+        } else {
+            // many points to a cell: summed apart, as at a port
+            let per = R::one() / R::of(2f64.powi((powers[d] - powers[m]) as i32));
+            let start = R::of(first as f64) * per + cells;
+            by_cell(run, start, per, |k, lower, upper| {
+                lane.add(k as i64, coef * lower);
+                lane.add(k as i64 + 1, coef * upper);
+            });
+        }
     }
 
     /// The fronts `coef * x` that a run's points cause leaving at port
