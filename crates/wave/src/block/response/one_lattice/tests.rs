@@ -256,12 +256,12 @@ fn a_far_slower_layer_goes_on_a_coarser_lattice_of_the_same_points() {
     }
 }
 
-/// A layer far faster than the rest of its block is swept point by point
-/// within the others' step (`sweep.rs`), and its points land as the same
-/// lattice taken point by point within its own step lands them, to
-/// rounding, on every tap final in both: the fast layer inside the block,
-/// at its lower port, at its upper port, and under the free top, from
-/// each input.
+/// A block's fastest layer is swept point by point within the others'
+/// step (`sweep.rs`), and its points land as the same lattice taken point
+/// by point within its own step lands them, to rounding, on every tap
+/// final in both: the fast layer inside the block (its neighbours far
+/// slower, or one only 1.5 times), at its lower port, at its upper port,
+/// and under the free top, from each input.
 #[test]
 fn a_swept_layer_lands_as_its_points_placed_one_by_one() {
     let (below, block, above) = three_stiff_layers();
@@ -270,8 +270,15 @@ fn a_swept_layer_lands_as_its_points_placed_one_by_one() {
     fast.length /= 100.0;
     fast.top = fast.length;
     fast.transit_time /= 100.0;
+    // and a layer of the first one's impedance, only 1.5 times slower
+    let mut near = block[0];
+    let stretch = 1.5 * fast.transit_time / near.transit_time;
+    near.length *= stretch;
+    near.top = near.length;
+    near.transit_time *= stretch;
     let cases = [
         (vec![block[0], fast, block[2]], Some(above), 1),
+        (vec![near, fast, block[2]], Some(above), 1),
         (vec![fast, block[2]], Some(above), 0),
         (vec![block[0], fast], Some(above), 1),
         (vec![block[0], fast], None, 1),
