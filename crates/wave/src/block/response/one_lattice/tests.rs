@@ -47,8 +47,11 @@ fn traced(shape: &Shape<f64>, input: usize) -> Response {
 /// top) from each input, on lattices of a fifth and a twentieth of each
 /// transit. The two traces' steps differ where the fastest layer is swept
 /// (`sweep.rs`), and so do the instants at which they find what they hold
-/// below `REST` and end: what either left then, at its force (which an
-/// interface passes at most doubled), may be in the other's last taps.
+/// below `REST` and end: what either left then may be in the other's last
+/// taps, and is allowed on top of rounding at its force doubled (a front
+/// passes at most twice its force through an interface; the scale of it,
+/// not a bound: the taps found `2e-12` apart where that allows `4e-11`,
+/// and a landing gone wrong moves taps of `1e-3` and more).
 #[test]
 fn shifted_runs_land_as_points_placed_one_by_one() {
     let (below, block, above) = three_stiff_layers();
