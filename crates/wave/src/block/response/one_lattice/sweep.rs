@@ -1,16 +1,17 @@
 //! A block's fastest layer on one lattice, swept point by point.
 //!
 //! A trace's step is the shortest transit less a cell, so that no front
-//! born within a step arrives within it. Where one layer is far faster
-//! than the rest of its block, that layer sets the step, and every step
-//! takes each of its lanes a run of a few points and pays a run's
-//! bookkeeping for them: seed 3's rod 32 of the layer survey (a layer of
+//! born within a step arrives within it. The block's fastest layer sets
+//! the step, and every step takes each of its lanes a run of a few
+//! points and pays a run's bookkeeping for them: far the most where that
+//! layer is far faster than the rest: seed 3's rod 32 (a layer of
 //! transit `1.1e-6` beside ones of `1.7e-5` and more) spent about 1,850
 //! instructions a step, nearly all of its time, on runs of four points.
 //! Within a step of the other layers that layer's two lanes feed only
 //! each other, and a point's reflection lands at least a cell after it
-//! (its transit is at least a cell). So the step is the other layers',
-//! and the fastest layer's points are swept in time order, each taken
+//! (its transit is at least a cell). So where the next layer is at least
+//! [`SWEEP_FROM`] times slower, the step is the other layers', and the
+//! fastest layer's points are swept in time order, each taken
 //! final, its two reflections added to the points ahead, and what it
 //! sends out gathered into runs landed on its neighbours as any lane's.
 //! The deposits are the same, summed in another order: the taps agree
