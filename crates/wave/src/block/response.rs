@@ -442,7 +442,12 @@ impl<R: Real> Trace<R> {
     /// Lane `i`'s oldest `n` points, taken out into the trace's room for a
     /// run (to be put back in `self.run` once scattered).
     fn take_run(&mut self, i: usize, n: usize) -> Vec<R> {
-        let mut run = std::mem::take(&mut self.run);
+        let room = std::mem::take(&mut self.run);
+        self.take_run_into(i, n, room)
+    }
+
+    /// [`Trace::take_run`] into the room of `run`.
+    fn take_run_into(&mut self, i: usize, n: usize, mut run: Vec<R>) -> Vec<R> {
         run.clear();
         let lane = &mut self.lanes[i];
         run.extend_from_slice(&lane.points.as_slice()[..n]);

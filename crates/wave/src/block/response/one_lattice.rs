@@ -23,8 +23,9 @@
 //! trace.) The fastest layer is not nested (`nested.rs`): its neighbours'
 //! lattices are its own.
 //!
-//! A layer far faster than the rest of its block is swept point by point
-//! within the others' step (`sweep.rs`), not taken a few points a step.
+//! A block's fastest layer, where the next is at least 1.1 times slower,
+//! is swept point by point within the others' step (`sweep.rs`), not
+//! taken a few points a step.
 //!
 //! What a traced point costs in the work the budget counts stays what the
 //! fronts it stands for on the layer's own lattice cost, so a ladder runs

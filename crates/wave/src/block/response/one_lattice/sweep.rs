@@ -115,11 +115,8 @@ impl<R: Real> Trace<R> {
             u[i + w + 1] += bottom_hi * y;
         }
         let up_run = self.take_run(up, len);
-        let mut down_run = std::mem::take(&mut self.run_down);
-        down_run.clear();
-        down_run.extend_from_slice(&self.lanes[down].points.as_slice()[..len]);
-        self.lanes[down].points.skip(len);
-        self.lanes[down].base += len as i64;
+        let room = std::mem::take(&mut self.run_down);
+        let down_run = self.take_run_into(down, len, room);
         self.shared_work += 2.0 * len as f64 * shape.work_share[f];
         self.taken_since += 2 * len;
         let from = (first, h, transit);
