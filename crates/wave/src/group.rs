@@ -130,9 +130,7 @@ pub(crate) struct Group<R> {
     input_taken: bool,
     /// Which arrivals at one boundary are one event (the loop's window).
     window: Window<R>,
-    /// Scratch: a lane's due points, due exact fronts, a boundary's
-    /// arrivals from each side.
-    run: Vec<R>,
+    /// Scratch: due exact fronts, a boundary's arrivals from each side.
     due: Vec<Exact<R>>,
     below: Vec<(R, R)>,
     above: Vec<(R, R)>,
@@ -270,7 +268,6 @@ impl<R: Real> Group<R> {
             input: None,
             input_taken: false,
             window,
-            run: Vec::new(),
             due: Vec::new(),
             below: Vec::new(),
             above: Vec::new(),

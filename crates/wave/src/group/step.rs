@@ -18,43 +18,39 @@ impl<R: Real> Group<R> {
         }
     }
 
-    /// Lane `i`'s lattice points arriving before `end`, taken out: into
-    /// `run` (the first point's index returned).
-    fn take_due(&mut self, i: usize, end: R) -> i64 {
-        let first = self.points[i].base;
-        let len = self.points[i].points.len();
-        let n = (0..len)
-            .find(|&j| self.arrival(i, first + j as i64) >= end)
-            .unwrap_or(len);
-        self.run.clear();
-        let lane = &mut self.points[i];
-        self.run.extend_from_slice(&lane.points.as_slice()[..n]);
-        lane.points.skip(n);
-        lane.base += n as i64;
-        first
-    }
-
     /// Lane `i`'s fronts arriving before `end`, taken out into `into` in
     /// the order they arrive, `(time, jump)`: its lattice points', and its
-    /// exact fronts' among them (`due` holds the step's).
+    /// exact fronts' among them (`due` holds the step's). Each point's
+    /// arrival is found once, in the one pass that finds where the due
+    /// points end (a pass to find the end, a copy of the due points and a
+    /// second pass were a sixth of the instructions of layer survey seed
+    /// 3's rod 23, whose time is its bottom group's steps).
     fn arrivals(&mut self, i: usize, end: R, into: &mut Vec<(R, R)>) {
-        let first = self.take_due(i, end);
+        let m = i / 2;
+        let (s, transit) = (self.spacing[m], self.layers[m].transit_time);
+        let lane = &self.points[i];
+        let first = lane.base;
         into.clear();
-        for (j, &x) in self.run.iter().enumerate() {
+        let mut n = 0;
+        for (j, &x) in lane.points.iter().enumerate() {
+            // (`Group::arrival`, inlined with the lane's spacing at hand)
+            let at = R::of((first + j as i64) as f64) * s + transit;
+            if at >= end {
+                break;
+            }
+            n = j + 1;
             if x != R::zero() {
-                into.push((self.arrival(i, first + j as i64), x));
+                into.push((at, x));
             }
         }
-        let transit = self.layers[i / 2].transit_time;
         // fronts arriving together in the loop's lane order: a lattice
         // point after the exact fronts ahead of it, before the others
         // (births apart may arrive together after rounding: birth order
         // first, as the lane holds them)
         if self.due.iter().any(|e| e.lane == i) {
-            let s = self.spacing[i / 2];
             let mut tagged = std::mem::take(&mut self.tagged);
             tagged.clear();
-            for (j, &x) in self.run.iter().enumerate() {
+            for (j, &x) in lane.points.as_slice()[..n].iter().enumerate() {
                 if x != R::zero() {
                     let born = R::of((first + j as i64) as f64) * s;
                     tagged.push(Tagged::on_point(born + transit, born, x));
@@ -67,6 +63,9 @@ impl<R: Real> Group<R> {
             into.extend(tagged.iter().map(|t| (t.arrives, t.jump)));
             self.tagged = tagged;
         }
+        let lane = &mut self.points[i];
+        lane.points.skip(n);
+        lane.base += n as i64;
         self.followed += into.len() as u64;
     }
 
