@@ -177,4 +177,51 @@ mod tests {
         assert!(folded.is_empty());
         assert_eq!(folded.total_abs(), 0.0);
     }
+
+    /// Many deposits onto points already held (the path an arrival's
+    /// fronts nearly always take), some past the last held and some before
+    /// the first, while points are taken: each point gives what the
+    /// definition puts on it, `jump (1 - f)` on `floor(x)` and `jump f` on
+    /// the next, summed in the order of the deposits (so to the bit).
+    #[test]
+    fn held_points_take_what_the_definition_puts_on_them() {
+        use std::collections::BTreeMap;
+        let mut folded = Folded::<f64>::default();
+        let mut by_definition: BTreeMap<i64, f64> = BTreeMap::new();
+        let mut taken: Vec<(i64, f64)> = Vec::new();
+        let mut expected: Vec<(i64, f64)> = Vec::new();
+        let (mut next, mut state) = (10_i64, 12345_u64);
+        for n in 0..400 {
+            // (a fixed sequence of positions a few points on from `next`,
+            // an arrival's fronts in the order of their delays)
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let spread = (state >> 11) as f64 / (1u64 << 53) as f64;
+            let x = next as f64 + 6.0 * spread;
+            let jump = if n % 3 == 0 { -0.7 } else { 1.0 + spread };
+            assert!(folded.deposit(x, jump, next));
+            let (k, f) = (x.floor() as i64, x - x.floor());
+            for (point, share) in [(k, jump * (1.0 - f)), (k + 1, jump * f)] {
+                *by_definition.entry(point).or_insert(0.0) += share;
+            }
+            if n % 7 == 6 {
+                // the point before `next` went `behind`: none here
+                assert_eq!(folded.take_behind(), 0.0);
+                taken.push((next, folded.take(next)));
+                expected.push((next, by_definition.remove(&next).unwrap_or(0.0)));
+                next += 1;
+            }
+        }
+        while !folded.is_empty() {
+            taken.push((next, folded.take(next)));
+            expected.push((next, by_definition.remove(&next).unwrap_or(0.0)));
+            next += 1;
+        }
+        assert!(
+            by_definition.values().all(|&v| v == 0.0),
+            "{by_definition:?}"
+        );
+        assert_eq!(taken, expected);
+    }
 }

@@ -23,8 +23,8 @@ impl<R: Real> Group<R> {
     /// exact fronts' among them (`due` holds the step's). Each point's
     /// arrival is found once, in the one pass that finds where the due
     /// points end (a pass to find the end, a copy of the due points and a
-    /// second pass were a sixth of the instructions of layer survey seed
-    /// 3's rod 23, whose time is its bottom group's steps).
+    /// second pass cost 6.5 % of the instructions of layer survey seed 3's
+    /// rod 23, whose time is its bottom group's steps).
     fn arrivals(&mut self, i: usize, end: R, into: &mut Vec<(R, R)>) {
         let m = i / 2;
         let (s, transit) = (self.spacing[m], self.layers[m].transit_time);
