@@ -33,8 +33,7 @@ impl<R: Real> Group<R> {
         into.clear();
         let mut n = 0;
         for (j, &x) in lane.points.iter().enumerate() {
-            // (`Group::arrival`, inlined with the lane's spacing at hand)
-            let at = R::of((first + j as i64) as f64) * s + transit;
+            let at = self.arrival(i, first + j as i64);
             if at >= end {
                 break;
             }
