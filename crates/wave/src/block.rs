@@ -92,6 +92,10 @@ pub(crate) struct Port<R> {
     pub key_layer: usize,
 }
 
+/// One input's response at one port, as [`Block::responses`] reports it:
+/// the port's spacing, its taps, and its exact fronts `(delay, jump)`.
+pub(crate) type PortResponse<R> = (R, Vec<R>, Vec<(R, R)>);
+
 /// A block of fast layers `lower..=upper`.
 #[derive(Debug, Clone)]
 pub(crate) struct Block<R> {
@@ -202,6 +206,27 @@ impl<R: Real> Block<R> {
             followed += trace.extend(&self.shape, finest, cells);
         }
         (self.traces.iter().all(|t| t.done), followed)
+    }
+
+    /// Every input's response at every port, traced to `length` after its
+    /// arrival (or until done): per input, per port, the port's lattice
+    /// spacing, its taps, and the large fronts followed at their exact
+    /// times (`(delay, jump)`). A diagnostic: the engine reads taps one by
+    /// one, as a port needs them ([`Block::tap`]).
+    pub(crate) fn responses(&mut self, length: R) -> Vec<Vec<PortResponse<R>>> {
+        let shape = &self.shape;
+        self.traces
+            .iter_mut()
+            .map(|trace| {
+                (0..shape.port_spacing.len())
+                    .map(|o| {
+                        let h = shape.port_spacing[o];
+                        trace.extend(shape, o, (length / h).ceil().to_f64() as i64);
+                        (h, trace.taps[o].clone(), trace.exact[o].clone())
+                    })
+                    .collect()
+            })
+            .collect()
     }
 
     /// Response tap `i` of input `j` at port `o`, traced if need be; the

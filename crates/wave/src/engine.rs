@@ -36,6 +36,7 @@ pub(crate) const NEAR_GRAZING: f64 = 1e-7;
 mod ledger;
 mod motion;
 mod observe;
+pub use observe::BlockResponse;
 mod setup;
 
 pub use ledger::Decisions;

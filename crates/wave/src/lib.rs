@@ -41,7 +41,7 @@ mod window;
 
 pub use config::{LeapArrivals, Precision, Record, Resolution, StopRule, WaveConfig};
 pub use convergence::SLOWEST_ORDER;
-pub use engine::{Decisions, Step, StepKind, Tracer, WaveEngine};
+pub use engine::{BlockResponse, Decisions, Step, StepKind, Tracer, WaveEngine};
 pub use error::WaveError;
 pub use fields::{FieldSample, FieldTotals};
 pub use lane::Direction;

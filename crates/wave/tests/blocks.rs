@@ -307,3 +307,89 @@ fn folded_response_fronts_change_only_the_order_of_the_sums() {
         }
     }
 }
+
+/// A block's traced response, as `Tracer::block_responses` reports it
+/// (`crates/wave/examples/block_taps.rs` writes it out), is over all time
+/// what the interface between the block's neighbours does (the block is
+/// transparent at zero frequency): with the block's faces' own
+/// reflections, its taps and exact fronts at each port sum to the direct
+/// interface's reflection and transmission. On the matched blocks, whose
+/// responses ring out within a few dozen round trips, to `1e-9`; the
+/// dropped fronts and the rest carry at most `1e-13` each.
+#[test]
+fn a_blocks_reported_response_is_the_interface_between_its_neighbours() {
+    use impact_model::{InterfaceCoefficients, WaveConstants};
+    use impact_wave::WaveEngine;
+    let mut rng = XorShift(0x5bd1_e995_7f4a_7c15);
+    let mut scenes: Vec<Scene> = (0..4).map(|_| matched_block(&mut rng)).collect();
+    // and one that rings long, its response mostly taps: the layer
+    // survey's rod 20 (seed 7), as above
+    scenes.push(Scene::elastic_stack(
+        1.0,
+        &[
+            (0.4954541110415926, 188.6900167559795, 8.347365412239864),
+            (1.1185481502738823, 9414877211.070044, 0.28648883899932903),
+            (0.2840612669703682, 25979164416.074642, 0.3498170036734888),
+            (0.38155139141117106, 22329567728.11959, 3.247529431968498),
+            (1.0495878272608952, 505785077767.1679, 2.248781579086109),
+            (0.6059478279156085, 1780693.6578908376, 1.1835804440683804),
+        ],
+    ));
+    for (k, scene) in scenes.iter().enumerate() {
+        let rod = scene.validate().unwrap();
+        let config = WaveConfig {
+            resolution: Resolution::Merged {
+                per_transit: 0.1,
+                per_longest: 2e-3,
+            },
+            ..WaveConfig::default()
+        };
+        let mut engine = WaveEngine::new(&rod, config).unwrap();
+        let blocks = engine.answered_blocks();
+        assert!(!blocks.is_empty(), "scene {k}: no block answered");
+        let responses = engine.block_responses(100.0);
+        let side = |m: usize| {
+            let l = &scene.layers[m];
+            let (modulus, density) = (l.modulus, l.density);
+            let w = WaveConstants::of(l.length, modulus, density);
+            (w.impedance, modulus)
+        };
+        for (&(lower, upper), inputs) in blocks.iter().zip(&responses) {
+            let top = upper + 1 == scene.layers.len();
+            let face_below = InterfaceCoefficients::of_sides(side(lower - 1), side(lower));
+            let total = |r: &impact_wave::BlockResponse| {
+                r.taps.iter().sum::<f64>() + r.exact.iter().map(|e| e.1).sum::<f64>()
+            };
+            let close = |a: f64, b: f64| (a - b).abs() < 1e-9;
+            eprintln!(
+                "scene {k}: block {lower}..={upper}{}, taps {:?}, exact fronts {:?}",
+                if top { " under the free top" } else { "" },
+                inputs[0].iter().map(|r| r.taps.len()).collect::<Vec<_>>(),
+                inputs[0].iter().map(|r| r.exact.len()).collect::<Vec<_>>(),
+            );
+            if top {
+                // under the free top: everything comes back down
+                let back = total(&inputs[0][0]) + face_below.up_reflected;
+                assert!(close(back, -1.0), "scene {k}: {back}");
+                continue;
+            }
+            let direct = InterfaceCoefficients::of_sides(side(lower - 1), side(upper + 1));
+            let face_above = InterfaceCoefficients::of_sides(side(upper), side(upper + 1));
+            let from_below = (total(&inputs[0][0]), total(&inputs[0][1]));
+            let from_above = (total(&inputs[1][0]), total(&inputs[1][1]));
+            assert!(
+                close(from_below.0 + face_below.up_reflected, direct.up_reflected),
+                "scene {k}: {from_below:?} {direct:?}"
+            );
+            assert!(close(from_below.1, direct.up_transmitted), "scene {k}");
+            assert!(
+                close(
+                    from_above.1 + face_above.down_reflected,
+                    direct.down_reflected
+                ),
+                "scene {k}: {from_above:?} {direct:?}"
+            );
+            assert!(close(from_above.0, direct.down_transmitted), "scene {k}");
+        }
+    }
+}

@@ -109,6 +109,40 @@ impl<R: Real> Tracer<R> {
             .collect()
     }
 
+    /// A diagnostic: each answered block's response to a unit jump at each
+    /// input port (its lower port, then its upper one), at each output
+    /// port, traced to `length` (in the scene's time units) after the
+    /// input or until it is done, per block, per input, per output. The
+    /// traces go further than a run may need them, and a run counts only
+    /// the tracing it asks for: run a fresh tracer, not this one, for the
+    /// outcome.
+    pub fn block_responses(&mut self, length: f64) -> Vec<Vec<Vec<BlockResponse>>> {
+        let unit = self.units.time;
+        let length = R::of(length / unit);
+        self.blocks
+            .list
+            .iter_mut()
+            .map(|b| {
+                b.responses(length)
+                    .into_iter()
+                    .map(|ports| {
+                        ports
+                            .into_iter()
+                            .map(|(h, taps, exact)| BlockResponse {
+                                spacing: h.to_f64() * unit,
+                                taps: taps.iter().map(|x| x.to_f64()).collect(),
+                                exact: exact
+                                    .iter()
+                                    .map(|&(t, d)| (t.to_f64() * unit, d.to_f64()))
+                                    .collect(),
+                            })
+                            .collect()
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+
     /// Which of those blocks are traced on one lattice
     /// (`WaveConfig::one_lattice_blocks`), in the same order.
     pub fn blocks_on_one_lattice(&self) -> Vec<bool> {
@@ -160,4 +194,19 @@ impl<R: Real> Tracer<R> {
         o.truncation = Some(self.drops.truncation);
         o
     }
+}
+
+/// A block's response at one output port to a unit strain jump arriving
+/// at one input port ([`Tracer::block_responses`]): what the port delivers
+/// per unit of the input's jump.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BlockResponse {
+    /// The port's lattice spacing, in the scene's time units: tap `k`
+    /// is delivered `k` spacings after the input.
+    pub spacing: f64,
+    /// The small fronts, deposited on the port's lattice.
+    pub taps: Vec<f64>,
+    /// The large ones, at their exact delays (scene units) in the order
+    /// they leave, `(delay, jump)`.
+    pub exact: Vec<(f64, f64)>,
 }
