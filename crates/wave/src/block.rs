@@ -35,6 +35,7 @@ mod flow;
 mod folded;
 mod inputs;
 mod partitioned;
+mod real_fft;
 mod response;
 
 pub(crate) use choice::{allowance, apart, candidates, priced_run};

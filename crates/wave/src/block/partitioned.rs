@@ -27,18 +27,24 @@
 //! the top reads up to two of its partitions ahead of the span.
 //!
 //! The FFT is `rustfft`'s scalar one, in double precision: the same
-//! numbers on every CPU. Its rounding is relative `1e-16` (times the
-//! logarithm of the block) of the sizes of a whole block's inputs and a
+//! numbers on every CPU. Arrivals and taps are real, so each block's FFT
+//! of `2 n` real points is one of `n` complex points, untangled
+//! (`real_fft.rs`), and a spectrum is its `n + 1` bins: half the
+//! butterflies and half the products of a complex FFT of the real
+//! points, which the first build took (fast-bottom rod 16's first level
+//! 25.7 -> 22.4 G instructions). The work counted is still the complex
+//! FFT's, the unit the blocks' price (`choice.rs`) was set in. Its
+//! rounding is relative `1e-16` (times the logarithm of the block) of
+//! the sizes of a whole block's inputs and a
 //! partition's taps, not of one output's terms, so where one output
 //! cancels beside large terms elsewhere in its block it can be far above
 //! the direct sums'; the ladder's levels and twin measure it with the
 //! rest. A double-double run sums directly ([`Real::FFT_SUMS`]).
 
+use super::real_fft::RealFft;
 use crate::real::Real;
 use rustfft::num_complex::Complex;
-use rustfft::{Fft, FftPlannerScalar};
 use std::collections::VecDeque;
-use std::sync::Arc;
 
 /// Points of the finest level's blocks.
 pub(crate) const FIRST: i64 = 128;
@@ -99,13 +105,13 @@ pub(crate) struct Points<'a, R> {
 impl<R: Real> Points<'_, R> {
     /// The points of `[from, from + n)` into the first half of `out`
     /// (the rest zero); whether any is not zero.
-    fn block(&self, from: i64, n: usize, out: &mut [Complex<f64>]) -> bool {
-        out.fill(Complex::default());
+    fn block(&self, from: i64, n: usize, out: &mut [f64]) -> bool {
+        out.fill(0.0);
         let mut any = false;
         for (i, c) in out.iter_mut().take(n).enumerate() {
             let k = from + i as i64 - self.first;
             if let Some(&x) = usize::try_from(k).ok().and_then(|k| self.jumps.get(k)) {
-                *c = Complex::new(x.to_f64(), 0.0);
+                *c = x.to_f64();
                 any |= x != R::zero();
             }
         }
@@ -120,10 +126,11 @@ pub(crate) struct Level {
     n: i64,
     /// Whether it is the top level (partitions `2, 3, ...`; else `2, 3`).
     top: bool,
-    forward: Arc<dyn Fft<f64>>,
-    inverse: Arc<dyn Fft<f64>>,
-    /// Spectra of the taps' partitions `p = 2, 3, ...` (taps `[p n, (p +
-    /// 1) n)`, padded to `2 n`); `None` where they are all zero.
+    /// FFTs of `2 n` real points.
+    fft: RealFft,
+    /// Spectra of the taps' partitions `p = 2, 3, ...` (taps from `p n`
+    /// to `(p + 1) n`, padded to `2 n`; their bins `0..=n`); `None` where
+    /// they are all zero.
     parts: Vec<Option<Vec<Complex<f64>>>>,
     /// Spectra of input blocks `inputs_from, ...`; `None` where the block
     /// holds no arrival.
@@ -134,8 +141,9 @@ pub(crate) struct Level {
     /// The level's part of that block's outputs, and of the next one's.
     current: Vec<f64>,
     carry: Vec<f64>,
+    /// A spectrum's bins, and a block's `2 n` real points (room kept).
     buffer: Vec<Complex<f64>>,
-    scratch: Vec<Complex<f64>>,
+    real: Vec<f64>,
 }
 
 impl std::fmt::Debug for Level {
@@ -170,25 +178,19 @@ impl Level {
     pub(crate) fn new(c: usize) -> Self {
         let n = block_size(c);
         let size = 2 * n as usize;
-        let mut planner = FftPlannerScalar::new();
-        let forward = planner.plan_fft_forward(size);
-        let inverse = planner.plan_fft_inverse(size);
-        let scratch_len = forward
-            .get_inplace_scratch_len()
-            .max(inverse.get_inplace_scratch_len());
+        let fft = RealFft::new(size);
         Self {
             n,
             top: n == TOP,
-            forward,
-            inverse,
+            buffer: vec![Complex::default(); fft.bins()],
+            fft,
             parts: Vec::new(),
             inputs: VecDeque::new(),
             inputs_from: 0,
             block: None,
             current: vec![0.0; n as usize],
             carry: vec![0.0; n as usize],
-            buffer: vec![Complex::default(); size],
-            scratch: vec![Complex::default(); scratch_len],
+            real: vec![0.0; size],
         }
     }
 
@@ -272,16 +274,15 @@ impl Level {
             self.buffer = sum;
             return;
         }
-        self.inverse
-            .process_with_scratch(&mut sum, &mut self.scratch);
+        self.fft.inverse(&sum, &mut self.real);
         *work += fft_work(2 * n);
         let scale = 1.0 / (2 * n) as f64;
-        let (first, second) = sum.split_at(n as usize);
+        let (first, second) = self.real.split_at(n as usize);
         for (c, z) in self.current.iter_mut().zip(first) {
-            *c += z.re * scale;
+            *c += z * scale;
         }
         for (c, z) in self.carry.iter_mut().zip(second) {
-            *c += z.re * scale;
+            *c += z * scale;
         }
         self.buffer = sum;
     }
@@ -293,14 +294,13 @@ impl Level {
         x: &Points<R>,
         work: &mut u64,
     ) -> Option<Vec<Complex<f64>>> {
-        let mut block = vec![Complex::default(); 2 * self.n as usize];
-        if !x.block(b * self.n, self.n as usize, &mut block) {
+        if !x.block(b * self.n, self.n as usize, &mut self.real) {
             return None;
         }
-        self.forward
-            .process_with_scratch(&mut block, &mut self.scratch);
+        let mut spectrum = vec![Complex::default(); self.fft.bins()];
+        self.fft.forward(&self.real, &mut spectrum);
         *work += fft_work(2 * self.n);
-        Some(block)
+        Some(spectrum)
     }
 
     /// The spectra of partitions `2..=last`, each computed the first time
@@ -315,12 +315,11 @@ impl Level {
                 self.parts.push(None);
                 continue;
             }
-            self.buffer.fill(Complex::default());
-            for (c, &t) in self.buffer.iter_mut().zip(part) {
-                *c = Complex::new(t.to_f64(), 0.0);
+            self.real.fill(0.0);
+            for (c, &t) in self.real.iter_mut().zip(part) {
+                *c = t.to_f64();
             }
-            self.forward
-                .process_with_scratch(&mut self.buffer, &mut self.scratch);
+            self.fft.forward(&self.real, &mut self.buffer);
             *work += fft_work(2 * self.n);
             self.parts.push(Some(self.buffer.clone()));
         }
