@@ -32,7 +32,7 @@
 //! (`real_fft.rs`), and a spectrum is its `n + 1` bins: half the
 //! butterflies and half the products of a complex FFT of the real
 //! points, which the first build took (fast-bottom rod 16's first level
-//! 25.7 -> 22.4 G instructions). The work counted is still the complex
+//! 25.7 -> 21.5 G instructions). The work counted is still the complex
 //! FFT's, the unit the blocks' price (`choice.rs`) was set in. Its
 //! rounding is relative `1e-16` (times the logarithm of the block) of
 //! the sizes of a whole block's inputs and a

@@ -70,13 +70,18 @@ impl RealFft {
         self.forward
             .process_with_scratch(&mut self.packed, &mut self.scratch);
         let z = &self.packed;
-        for (k, bin) in out.iter_mut().enumerate().take(m + 1) {
-            let a = z[k % m];
-            let b = z[(m - k) % m].conj();
-            // the even points' spectrum, and the odd ones'
+        // the even points' spectrum, and the odd ones', from bins `k` and
+        // `N/2 - k` of the packed one (`N/2` itself is bin 0)
+        let untangle = |a: Complex<f64>, b: Complex<f64>, w: Complex<f64>| {
             let even = (a + b) * 0.5;
             let odd = Complex::new(0.0, -0.5) * (a - b);
-            *bin = even + self.twiddle(k) * odd;
+            even + w * odd
+        };
+        let (first, last) = (z[0], z[0].conj());
+        out[0] = untangle(first, last, self.twiddles[0]);
+        out[m] = untangle(first, last, Complex::new(-1.0, 0.0));
+        for k in 1..m {
+            out[k] = untangle(z[k], z[m - k].conj(), self.twiddles[k]);
         }
     }
 
@@ -86,7 +91,6 @@ impl RealFft {
     /// bins.
     pub(crate) fn inverse(&mut self, spectrum: &[Complex<f64>], out: &mut [f64]) {
         let m = self.half;
-        // (k < N/2: the twiddles' own table)
         for ((k, z), w) in self.packed.iter_mut().enumerate().zip(&self.twiddles) {
             let a = spectrum[k];
             let b = spectrum[m - k].conj();
@@ -99,16 +103,6 @@ impl RealFft {
         for (pair, z) in out.chunks_exact_mut(2).zip(&self.packed) {
             pair[0] = z.re;
             pair[1] = z.im;
-        }
-    }
-
-    #[inline]
-    fn twiddle(&self, k: usize) -> Complex<f64> {
-        if k == self.half {
-            // exp(-i pi)
-            Complex::new(-1.0, 0.0)
-        } else {
-            self.twiddles[k]
         }
     }
 }
