@@ -6,7 +6,7 @@ use impact_model::{Layer, Outcome, Rod, Scene};
 use impact_wave::{Resolution, WaveConfig, simulate};
 
 mod common;
-use common::{XorShift, exact_run, ladder};
+use common::{SURVEY_SEED_7_ROD_20, XorShift, exact_run, ladder};
 
 fn bound(o: &Outcome) -> f64 {
     o.error_bound.expect("a bound")
@@ -127,14 +127,7 @@ fn blocks_land_within_their_bound_of_the_exact_value() {
 fn blocks_agree_with_the_loop_where_the_block_rings_long() {
     // survey rod 20 (seed 7): a slow bottom under four fast layers and a
     // top a hundred times slower than them
-    let rod = rod_of(&[
-        (0.4954541110415926, 188.6900167559795, 8.347365412239864),
-        (1.1185481502738823, 9414877211.070044, 0.28648883899932903),
-        (0.2840612669703682, 25979164416.074642, 0.3498170036734888),
-        (0.38155139141117106, 22329567728.11959, 3.247529431968498),
-        (1.0495878272608952, 505785077767.1679, 2.248781579086109),
-        (0.6059478279156085, 1780693.6578908376, 1.1835804440683804),
-    ]);
+    let rod = rod_of(&SURVEY_SEED_7_ROD_20);
     let on = ladder(
         &rod,
         WaveConfig {
@@ -324,17 +317,7 @@ fn a_blocks_reported_response_is_the_interface_between_its_neighbours() {
     let mut scenes: Vec<Scene> = (0..4).map(|_| matched_block(&mut rng)).collect();
     // and one that rings long, its response mostly taps: the layer
     // survey's rod 20 (seed 7), as above
-    scenes.push(Scene::elastic_stack(
-        1.0,
-        &[
-            (0.4954541110415926, 188.6900167559795, 8.347365412239864),
-            (1.1185481502738823, 9414877211.070044, 0.28648883899932903),
-            (0.2840612669703682, 25979164416.074642, 0.3498170036734888),
-            (0.38155139141117106, 22329567728.11959, 3.247529431968498),
-            (1.0495878272608952, 505785077767.1679, 2.248781579086109),
-            (0.6059478279156085, 1780693.6578908376, 1.1835804440683804),
-        ],
-    ));
+    scenes.push(Scene::elastic_stack(1.0, &SURVEY_SEED_7_ROD_20));
     for (k, scene) in scenes.iter().enumerate() {
         let rod = scene.validate().unwrap();
         let config = WaveConfig {

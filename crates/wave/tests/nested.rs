@@ -8,7 +8,7 @@ use impact_model::{Outcome, Scene};
 use impact_wave::{Resolution, WaveConfig, simulate};
 
 mod common;
-use common::{XorShift, exact_run, layer_of, scene_of};
+use common::{SURVEY_SEED_7_ROD_20, XorShift, exact_run, layer_of, scene_of};
 
 fn bound(o: &Outcome) -> f64 {
     o.error_bound.expect("a bound")
@@ -119,15 +119,7 @@ fn a_nested_layer_lands_within_its_bound_of_the_exact_value() {
 /// points as the fronts it would save (`nested.rs`, the price).
 #[test]
 fn a_layer_whose_response_costs_more_than_its_fronts_is_not_nested() {
-    let layers = [
-        (0.4954541110415926, 188.6900167559795, 8.347365412239864),
-        (1.1185481502738823, 9414877211.070044, 0.28648883899932903),
-        (0.2840612669703682, 25979164416.074642, 0.3498170036734888),
-        (0.38155139141117106, 22329567728.11959, 3.247529431968498),
-        (1.0495878272608952, 505785077767.1679, 2.248781579086109),
-        (0.6059478279156085, 1780693.6578908376, 1.1835804440683804),
-    ];
-    let rod = Scene::elastic_stack(1.0, &layers)
+    let rod = Scene::elastic_stack(1.0, &SURVEY_SEED_7_ROD_20)
         .validate()
         .expect("a valid scene");
     let o = ladder(&rod, true);

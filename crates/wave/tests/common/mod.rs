@@ -127,3 +127,15 @@ pub fn random_scene(rng: &mut XorShift, most_layers: usize, top_speed: f64) -> S
         wall_contact: None,
     }
 }
+
+/// The layer survey's rod 20 (seed 7; length, modulus, density, bottom
+/// first): a slow bottom under four fast layers and a top a hundred
+/// times slower than them, whose block's response rings long.
+pub const SURVEY_SEED_7_ROD_20: [(f64, f64, f64); 6] = [
+    (0.4954541110415926, 188.6900167559795, 8.347365412239864),
+    (1.1185481502738823, 9414877211.070044, 0.28648883899932903),
+    (0.2840612669703682, 25979164416.074642, 0.3498170036734888),
+    (0.38155139141117106, 22329567728.11959, 3.247529431968498),
+    (1.0495878272608952, 505785077767.1679, 2.248781579086109),
+    (0.6059478279156085, 1780693.6578908376, 1.1835804440683804),
+];
