@@ -25,7 +25,12 @@ largest peak memory (the process's resident set, from `wait4`).
 With --exact-events N, each rod whose default run merged fronts is run again
 exactly (`--resolution exact --max-events N`); where that finishes, the line
 adds the exact `e` and how far the merged `e` is from it in units of its
-bound, and the summary says whether every such bound held (exit 1 if not).
+bound (and whether the run said its estimate may be low), and the summary
+says whether every such bound held (exit 1 if not) and how many of those
+outside had said so. A rod reported exact after its ladder's levels did
+not converge (the exact run allowed the ladder's budget; `ladder_set_aside`
+in the JSON) says so on its line, with how far the ladder's `e` was from
+it in units of the ladder's bound.
 
 With --fine-budget N, each merged rod is run again with a ladder allowed N
 events and aiming at `1e-12` (`--event-budget N --target 1e-12`), so it
@@ -233,7 +238,8 @@ def main():
     rng = random.Random(args.seed)
     times, unfinished, failed = [], 0, 0
     peak, peak_rod, peak_floor, floor = 0.0, None, 0.0, 0.0
-    checked, held, closest = 0, 0, 0.0
+    checked, held, exact_furthest, outside_warned = 0, 0, 0.0, 0
+    again = 0
     fine_checked, fine_held, fine_closest, fine_open = 0, 0, 0.0, 0
     other_times, moved, furthest = [], 0, (0.0, None)
     print(f"rod  layers  ratio      seconds       events     MiB  e             bound")
@@ -284,11 +290,24 @@ def main():
                     d = abs(out["restitution"] - x["restitution"])
                     share = d / out["error_bound"] if out["error_bound"] > 0 else math.inf
                     checked += 1
-                    held += d <= out["error_bound"] + x["error_bound"]
-                    closest = max(closest, share)
-                    exact = f"  exact {x['restitution']:.10f}, off by {share:.2f} of the bound"
+                    within = d <= out["error_bound"] + x["error_bound"]
+                    warned = out["error_estimate"].get("merged_converging") is False
+                    held += within
+                    outside_warned += (not within) and warned
+                    exact_furthest = max(exact_furthest, share)
+                    exact = (f"  exact {x['restitution']:.10f}, off by {share:.2f} of the bound"
+                             + (" (which says it may be low)" if warned else ""))
                 else:
                     exact = f"  (exact run over {args.exact_events:.0e} events)"
+            set_aside = (out.get("error_estimate") or {}).get("ladder_set_aside")
+            if set_aside:
+                # exact after a ladder whose levels did not converge
+                again += 1
+                exact += (f"  exact after the ladder (its levels at order "
+                          f"{set_aside.get('observed_order', float('nan')):.1f} gave "
+                          f"{set_aside['restitution']:.10f} ± {set_aside['merged_bound']:.1e}, "
+                          f"{abs(set_aside['restitution'] - out['restitution']) / set_aside['merged_bound']:.2f} "
+                          f"of that bound away)")
             if args.fine_budget and out["truncation"]["merged_fronts"] > 0:
                 verdict, share = fine_check(impact, path, out, args.fine_budget, args.timeout)
                 exact += verdict
@@ -329,7 +348,12 @@ def main():
     if args.exact_events:
         print(f"merged rods run exactly within {args.exact_events:.0e} events: {checked}; "
               f"within their bound: {held} of {checked}"
-              + (f" (the closest at {closest:.2f} of its bound)" if checked else ""))
+              + (f" (the furthest at {exact_furthest:.2f} of its bound)" if checked else "")
+              + (f"; of the {checked - held} outside, {outside_warned} said their estimate may be low"
+                 if held < checked else ""))
+    if again:
+        print(f"exact after a ladder whose levels did not converge (the exact run allowed the ladder's "
+              f"budget): {again} rods")
     if args.fine_budget:
         print(f"merged rods run again with --event-budget {args.fine_budget:.0e}: {fine_checked} conclusive, "
               f"{fine_held} of them within the sum of the two bounds"

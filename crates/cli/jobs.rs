@@ -122,7 +122,7 @@ impl LadderSpinner {
 
     /// Shows what the ladder reports.
     pub fn show(&self, progress: impact_wave::LadderProgress) {
-        use impact_wave::LadderProgress::{FurtherTwins, LadderStarted, LevelDone};
+        use impact_wave::LadderProgress::{ExactAgain, FurtherTwins, LadderStarted, LevelDone};
         if !std::io::stderr().is_terminal() {
             return;
         }
@@ -154,6 +154,13 @@ impl LadderSpinner {
                     };
                     bar.set_message(format!(
                         "merged level {level} done (lattice {per_transit:.3} of each transit): e = {restitution:.8}, {bound}, {work} units of work"
+                    ));
+                }
+            }
+            ExactAgain { events } => {
+                if let Some(bar) = self.bar.get() {
+                    bar.set_message(format!(
+                        "the merged levels do not converge: the exact run again, allowed the ladder's budget of {events} events"
                     ));
                 }
             }

@@ -151,6 +151,12 @@ pub fn summary(title: &str, o: &Timed<Outcome>) -> String {
         if let Some(loss) = est.double_precision_loss {
             parts.push(format!("double precision alone was off by {loss:.1e}"));
         }
+        if let Some(ladder) = &est.ladder_set_aside {
+            parts.push(format!(
+                "exact: the merged levels did not converge, and gave {:.10} +- {:.1e}",
+                ladder.restitution, ladder.merged_bound
+            ));
+        }
         if est.merged_converging == Some(false) {
             // (such bounds have been found 3.4 to 37 times too small
             // against finer ladders, and on a stack of real materials

@@ -119,6 +119,7 @@ impl WaveArgs {
                 exact_events: 200_000,
                 budget_events: self.event_budget,
                 target: self.target.unwrap_or(1e-5),
+                exact_again: true,
             },
             (_, window) => {
                 let w = window.unwrap_or(1e-2);

@@ -36,7 +36,9 @@ pub mod wall_sample;
 pub use bilayer::Bilayer;
 pub use contact::ContactHistory;
 pub use interface::InterfaceCoefficients;
-pub use outcome::{EngineKind, ErrorEstimate, LadderStop, Outcome, StopReason, Truncation};
+pub use outcome::{
+    EngineKind, ErrorEstimate, LadderStop, Outcome, SetAsideLadder, StopReason, Truncation,
+};
 pub use scene::{Layer, LayerProps, Rod, Scene, SceneError, WaveConstants};
 pub use setting::{Allowed, SettingError};
 pub use timed::Timed;

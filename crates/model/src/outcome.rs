@@ -147,8 +147,30 @@ pub struct ErrorEstimate {
     /// same lattice model: its error is in the merged part).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stepped_group: Option<[usize; 2]>,
+    /// A merged ladder whose levels were not seen converging, set aside
+    /// because the exact run, allowed the ladder's budget, then finished:
+    /// the outcome is that exact run's, and this is what the ladder had
+    /// said, for comparison (`None` otherwise).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ladder_set_aside: Option<SetAsideLadder>,
     /// How the parts were obtained, in words.
     pub method: String,
+}
+
+/// What a ladder set aside for an exact run had reported
+/// ([`ErrorEstimate::ladder_set_aside`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct SetAsideLadder {
+    /// The finest level's `e`.
+    pub restitution: f64,
+    /// Its merged bound (the part its levels and twins gave).
+    pub merged_bound: f64,
+    /// The order its last three levels showed, when both differences
+    /// were non-zero.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub observed_order: Option<f64>,
+    /// The events the exact run was allowed the second time.
+    pub exact_events: u64,
 }
 
 impl ErrorEstimate {

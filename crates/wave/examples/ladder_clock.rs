@@ -30,6 +30,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "{:7.3} s  level {level} ({per_transit:.3e}): e {restitution:.10}, bound {bound:.1e}, work {work}",
             clock()
         ),
+        LadderProgress::ExactAgain { events } => {
+            println!("{:7.3} s  exact run again, up to {events} events", clock())
+        }
         LadderProgress::FurtherTwins {
             level,
             first_difference,

@@ -68,6 +68,11 @@ pub enum Resolution {
         budget_events: u64,
         /// Error bound in `e` at which the lattice stops halving.
         target: f64,
+        /// Where the ladder's levels do not converge (its estimate may be
+        /// low) and the first exact run came far enough, the exact run
+        /// again, allowed `budget_events`; reported if it finishes
+        /// (`exact_again.rs`). Tests of the ladder itself turn it off.
+        exact_again: bool,
     },
 }
 
@@ -81,6 +86,7 @@ impl Resolution {
         exact_events: 200_000,
         budget_events: 4_000_000,
         target: 1e-5,
+        exact_again: true,
     };
 }
 

@@ -21,6 +21,7 @@ mod config;
 mod convergence;
 mod engine;
 mod error;
+mod exact_again;
 mod fields;
 mod geometric;
 mod group;

@@ -33,6 +33,7 @@
 use crate::config::{Precision, Resolution, WaveConfig};
 use crate::engine::{Decisions, Tracer, WaveEngine};
 use crate::error::WaveError;
+use crate::exact_again as again;
 use crate::ladder::{fixed_lattice, ladder};
 use crate::real::DoubleDouble;
 use crate::real::Real;
@@ -92,6 +93,13 @@ pub enum LadderProgress {
         /// Work done so far (loop iterations, and leaps' fronts and cells).
         work: u64,
     },
+    /// The ladder's levels did not converge, and the first exact run came
+    /// far enough that the exact run is tried again, allowed the ladder's
+    /// budget; if it finishes, it is reported.
+    ExactAgain {
+        /// The events it is allowed.
+        events: u64,
+    },
     /// The level reported differs from its twin (the bottom's modulus
     /// `1e-12` stiffer) by so much that contacts flip on a nudge: two more
     /// twins run before the bound is set (a level's run more).
@@ -117,6 +125,7 @@ pub fn solve_observed(
 ) -> Result<Solution, WaveError> {
     config.check()?;
     let mut parts = Vec::new();
+    let mut set_aside = None;
     let (fine, merged) = match config.resolution {
         Resolution::Exact => (run::<f64>(rod, config.clone())?, None),
         Resolution::Merged {
@@ -130,28 +139,44 @@ pub fn solve_observed(
             exact_events,
             budget_events,
             target,
+            exact_again,
         } => {
             let exact = WaveConfig {
                 resolution: Resolution::Exact,
                 max_events: exact_events.min(config.max_events),
                 ..config.clone()
             };
-            match run::<f64>(rod, exact) {
-                Ok(e) => (e, None),
-                Err(WaveError::EventLimit { .. }) => {
+            match again::first_run(rod, exact) {
+                (Ok(e), _) => (e, None),
+                (Err(WaveError::EventLimit { events, time }), halfway) => {
                     parts.push(format!(
                         "the exact run needs more than {exact_events} events"
                     ));
                     observe(LadderProgress::LadderStarted { exact_events });
-                    let l = ladder(rod, config, budget_events, target, observe)?;
-                    (l.0, Some(l.1))
+                    let (fine, check) = ladder(rod, config, budget_events, target, observe)?;
+                    let first = halfway.map(|halfway| again::FirstRun {
+                        halfway,
+                        stopped: (events, time),
+                    });
+                    let after = first.filter(|_| exact_again).and_then(|first| {
+                        again::after_ladder(rod, config, (&fine, &check), first, observe)
+                    });
+                    match after {
+                        Some((exact, note, ladder)) => {
+                            parts.push(note);
+                            set_aside = Some(ladder);
+                            (exact, None)
+                        }
+                        None => (fine, Some(check)),
+                    }
                 }
-                Err(e) => return Err(e),
+                (Err(e), _) => return Err(e),
             }
         }
     };
     let mut estimate = ErrorEstimate {
         dropped: fine.dropped_error_bound(),
+        ladder_set_aside: set_aside,
         ..ErrorEstimate::default()
     };
     if let Some(check) = &merged {

@@ -72,7 +72,7 @@ fn a_chattering_rods_bound_covers_its_nudged_runs() {
             levels.set(level);
         }
         LadderProgress::FurtherTwins { level, .. } => further.set(Some(level)),
-        LadderProgress::LadderStarted { .. } => {}
+        LadderProgress::LadderStarted { .. } | LadderProgress::ExactAgain { .. } => {}
     })
     .unwrap()
     .outcome;
@@ -140,6 +140,7 @@ fn a_budget_stop_names_the_budget_that_runs_the_next_level() {
                 exact_events: 200_000,
                 budget_events,
                 target: 1e-12,
+                exact_again: false,
             },
             ..WaveConfig::default()
         };

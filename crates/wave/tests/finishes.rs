@@ -470,6 +470,7 @@ fn merged_bounds_hold_against_finer_ladders() {
             exact_events: 200_000,
             budget_events: 30_000_000,
             target: 1e-12,
+            exact_again: false,
         },
         ..WaveConfig::default()
     };

@@ -415,6 +415,7 @@ fn forced_ladder() -> WaveConfig {
             exact_events: 1_000,
             budget_events: 4_000_000,
             target: 1e-5,
+            exact_again: false,
         },
         fast_blocks: false,
         ..WaveConfig::default()

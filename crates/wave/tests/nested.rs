@@ -25,6 +25,7 @@ fn ladder(rod: &Rod, nest_blocks: bool) -> Outcome {
             exact_events: 1_000,
             budget_events: 4_000_000,
             target: 1e-3,
+            exact_again: false,
         },
         nest_blocks,
         ..WaveConfig::default()

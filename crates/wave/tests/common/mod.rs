@@ -34,6 +34,7 @@ pub fn ladder(rod: &Rod, config: WaveConfig) -> Outcome {
             exact_events: 1_000,
             budget_events: 4_000_000,
             target: 1e-6,
+            exact_again: false,
         },
         ..config
     };
