@@ -303,11 +303,12 @@ def main():
             if set_aside:
                 # exact after a ladder whose levels did not converge
                 again += 1
+                off = abs(set_aside["restitution"] - out["restitution"])
+                bound = set_aside["merged_bound"]
                 exact += (f"  exact after the ladder (its levels at order "
                           f"{set_aside.get('observed_order', float('nan')):.1f} gave "
-                          f"{set_aside['restitution']:.10f} ± {set_aside['merged_bound']:.1e}, "
-                          f"{abs(set_aside['restitution'] - out['restitution']) / set_aside['merged_bound']:.2f} "
-                          f"of that bound away)")
+                          f"{set_aside['restitution']:.10f} ± {bound:.1e}, "
+                          f"{off / bound if bound > 0 else math.inf:.2f} of that bound away)")
             if args.fine_budget and out["truncation"]["merged_fronts"] > 0:
                 verdict, share = fine_check(impact, path, out, args.fine_budget, args.timeout)
                 exact += verdict

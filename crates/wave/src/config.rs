@@ -69,9 +69,10 @@ pub enum Resolution {
         /// Error bound in `e` at which the lattice stops halving.
         target: f64,
         /// Where the ladder's levels do not converge (its estimate may be
-        /// low) and the first exact run came far enough, the exact run
-        /// again, allowed `budget_events`; reported if it finishes
-        /// (`exact_again.rs`). Tests of the ladder itself turn it off.
+        /// low) and the first exact run's growth says an exact run may fit
+        /// `budget_events`, the exact run again, allowed that; reported if
+        /// it finishes (`exact_again.rs`). Tests of the ladder itself turn
+        /// it off.
         exact_again: bool,
     },
 }

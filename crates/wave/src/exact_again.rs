@@ -9,13 +9,18 @@
 //! lose no time to it; but many need a few times that, and an exact run
 //! leaves nothing to estimate. So where the levels do not converge, and
 //! the way the first exact run's work grew says that a run within the
-//! ladder's own budget may finish ([`PREDICTED_SHARE`]), the exact run is
-//! tried again, allowed that budget. If it finishes, its outcome is reported (exact, with its
-//! own bound) and the ladder's is kept beside it for comparison
-//! (`ladder_set_aside`); if not, the ladder's stands as before.
+//! ladder's own budget may finish ([`COVERED`], [`PREDICTED_SHARE`]), the
+//! exact run is tried again, allowed that budget. If it finishes, its
+//! outcome is reported (exact, with its own bound) and the ladder's is
+//! kept beside it for comparison (`ladder_set_aside`); if not, the
+//! ladder's stands as before. Converging ladders are left alone: their
+//! bounds have held against every exact run and finer ladder since the
+//! order rule (README), and a second run would cost them time for a bound
+//! they have.
 //!
-//! Measured (`scripts/survey-layers.py`'s draws, each merged rod run
-//! exactly with up to `2e7` events): of 173 merged rods, 29 finish
+//! Measured (`scripts/survey-layers.py`'s layer draws, seeds 7, 3, 29,
+//! 53 and most of 41, and the materials draw's seed 13, each merged rod
+//! run exactly with up to `2e7` events): of 173 merged rods, 29 finish
 //! exactly, 16 of them within `4e6` events. Materials seed 13's rod 27
 //! (brass and aluminium under rubber and polyurethane) reported
 //! `0.6462448 ± 3.9e-4` at order `-0.3`; its exact run, 1.19 M events in
@@ -83,10 +88,10 @@ pub(crate) fn first_run(
 /// ([`FirstRun::work_to`]) missed the events of the surveys' exact runs
 /// by up to a factor of 3.8 either way (layer survey seed 29's rod 1:
 /// `1.8e6` predicted, `6.8e6` taken; seed 41's rod 11: `6.2e6`, `1.8e6`).
-/// Over their 173 merged rods the gate passes 17 (every rod, converging
-/// or not), of which 11 finish within `4e6` events; it passed none of the
-/// slow rods (seed 7's rod 15: `1.2e8` predicted at the first stop's
-/// pace alone).
+/// With [`COVERED`], over their 173 merged rods the gates pass 15 (every
+/// rod, converging or not), of which 11 finish within `4e6` events, and
+/// none of the slow rods (seed 7's rod 15 covered `0.17 %` of its run,
+/// and its growth predicts `8e15` events).
 pub(crate) const PREDICTED_SHARE: f64 = 0.5;
 
 /// How much of the run the first exact run must have covered for its

@@ -93,9 +93,9 @@ pub enum LadderProgress {
         /// Work done so far (loop iterations, and leaps' fronts and cells).
         work: u64,
     },
-    /// The ladder's levels did not converge, and the first exact run came
-    /// far enough that the exact run is tried again, allowed the ladder's
-    /// budget; if it finishes, it is reported.
+    /// The ladder's levels did not converge, and the first exact run's
+    /// growth says an exact run may fit the ladder's budget: it is tried
+    /// again, allowed that budget, and reported if it finishes.
     ExactAgain {
         /// The events it is allowed.
         events: u64,
