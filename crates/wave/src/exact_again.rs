@@ -60,6 +60,16 @@ impl FirstRun {
     }
 }
 
+/// `config` for an exact run allowed `max_events` (and no more than
+/// `config`'s own limit).
+pub(crate) fn exact_within(config: &WaveConfig, max_events: u64) -> WaveConfig {
+    WaveConfig {
+        resolution: Resolution::Exact,
+        max_events: max_events.min(config.max_events),
+        ..config.clone()
+    }
+}
+
 /// The exact run allowed `config.max_events`, and where it stood halfway
 /// through them (`None` if it finished, or stopped otherwise, first).
 pub(crate) fn first_run(
@@ -126,13 +136,8 @@ pub(crate) fn after_ladder(
     observe(LadderProgress::ExactAgain {
         events: budget_events,
     });
-    let exact = WaveConfig {
-        resolution: Resolution::Exact,
-        max_events: budget_events.min(config.max_events),
-        ..config.clone()
-    };
     // any error (the limit, a time limit) leaves the ladder's outcome
-    let exact = run::<f64>(rod, exact).ok()?;
+    let exact = run::<f64>(rod, exact_within(config, budget_events)).ok()?;
     let order = check
         .order
         .map_or(String::new(), |o| format!(", order {o:.1}"));

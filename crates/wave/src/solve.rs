@@ -140,39 +140,32 @@ pub fn solve_observed(
             budget_events,
             target,
             exact_again,
-        } => {
-            let exact = WaveConfig {
-                resolution: Resolution::Exact,
-                max_events: exact_events.min(config.max_events),
-                ..config.clone()
-            };
-            match again::first_run(rod, exact) {
-                (Ok(e), _) => (e, None),
-                (Err(WaveError::EventLimit { events, time }), halfway) => {
-                    parts.push(format!(
-                        "the exact run needs more than {exact_events} events"
-                    ));
-                    observe(LadderProgress::LadderStarted { exact_events });
-                    let (fine, check) = ladder(rod, config, budget_events, target, observe)?;
-                    let first = halfway.map(|halfway| again::FirstRun {
-                        halfway,
-                        stopped: (events, time),
-                    });
-                    let after = first.filter(|_| exact_again).and_then(|first| {
-                        again::after_ladder(rod, config, (&fine, &check), first, observe)
-                    });
-                    match after {
-                        Some((exact, note, ladder)) => {
-                            parts.push(note);
-                            set_aside = Some(ladder);
-                            (exact, None)
-                        }
-                        None => (fine, Some(check)),
+        } => match again::first_run(rod, again::exact_within(config, exact_events)) {
+            (Ok(e), _) => (e, None),
+            (Err(WaveError::EventLimit { events, time }), halfway) => {
+                parts.push(format!(
+                    "the exact run needs more than {exact_events} events"
+                ));
+                observe(LadderProgress::LadderStarted { exact_events });
+                let (fine, check) = ladder(rod, config, budget_events, target, observe)?;
+                let first = halfway.map(|halfway| again::FirstRun {
+                    halfway,
+                    stopped: (events, time),
+                });
+                let after = first.filter(|_| exact_again).and_then(|first| {
+                    again::after_ladder(rod, config, (&fine, &check), first, observe)
+                });
+                match after {
+                    Some((exact, note, ladder)) => {
+                        parts.push(note);
+                        set_aside = Some(ladder);
+                        (exact, None)
                     }
+                    None => (fine, Some(check)),
                 }
-                (Err(e), _) => return Err(e),
             }
-        }
+            (Err(e), _) => return Err(e),
+        },
     };
     let mut estimate = ErrorEstimate {
         dropped: fine.dropped_error_bound(),
