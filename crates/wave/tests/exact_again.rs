@@ -92,6 +92,14 @@ fn a_ladder_whose_levels_do_not_converge_gives_way_to_the_exact_run() {
         "{}",
         estimate.method
     );
+    // counted in events, so the same on one thread
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let alone_on_one = pool.install(|| simulate(&rod, &WaveConfig::default()).unwrap());
+    assert_eq!(alone_on_one.error_estimate.as_ref(), Some(&estimate));
+    assert_eq!(alone_on_one.restitution, o.restitution);
     eprintln!(
         "exact {:.10} ± {:.1e}; the ladder {:.10} ± {:.1e} (order {:?}), {:.2} of its bound away",
         o.restitution,
