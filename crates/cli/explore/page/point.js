@@ -204,7 +204,29 @@ export function showNumbers(o) {
   $("n-limit").textContent = x
     ? `${fmt(x.value, 9)} ± ${Number(x.error).toExponential(1)} (Richardson over chains of ${x.sizes.join(", ")}; the figures above are the chain of ${x.sizes[x.sizes.length - 1]})`
     : "";
+  // what `impact run` says beside a merged bound: whether its levels were
+  // seen converging, or the ladder set aside for an exact run
+  const note = boundNote(o.error_estimate);
+  $("n-bound-row").hidden = !note;
+  $("n-bound").textContent = note;
   $("n-contacts").textContent = o.contacts.slice(0, 8).map((c) => `[${c[0].toFixed(4)}, ${c[1].toFixed(4)}]`).join(" ") + (o.contacts.length > 8 ? ` … (${o.contacts.length})` : "");
+}
+
+// The caveat a bound carries, in the command line's words ("" for none).
+export function boundNote(est) {
+  if (!est) return "";
+  if (est.merged_converging === false) {
+    const order = est.merged_observed_order;
+    const levels = order === undefined || order === null
+      ? "the merged levels are not yet seen converging"
+      : `the merged levels show order ${Number(order).toFixed(1)}, below 0.5`; // convergence.rs SLOWEST_ORDER
+    return `may be low, by any factor: ${levels}`;
+  }
+  const ladder = est.ladder_set_aside;
+  if (ladder) {
+    return `exact: the merged levels did not converge, and gave ${Number(ladder.restitution).toFixed(10)} ± ${Number(ladder.merged_bound).toExponential(1)}`;
+  }
+  return "";
 }
 
 export function currentWindow() {
