@@ -146,6 +146,12 @@ pub struct Row {
     /// How far `restitution` may be from the model's exact value.
     #[serde(default)]
     pub error_bound: Option<f64>,
+    /// Whether that bound may be low: `true` where a merged run's levels
+    /// were not seen converging (`impact run`'s "the merged estimate may
+    /// be low, by any factor"), `false` for a merged bound whose levels
+    /// converge, empty for a run that merged nothing.
+    #[serde(default)]
+    pub bound_may_be_low: Option<bool>,
     /// Wall-clock time: the only column that differs between identical runs.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub elapsed_seconds: Option<f64>,
@@ -180,6 +186,7 @@ impl Row {
             dropped_fronts: None,
             merged_fronts: None,
             error_bound: None,
+            bound_may_be_low: None,
             elapsed_seconds: None,
             error: None,
         };
@@ -207,6 +214,11 @@ impl Row {
                 row.dropped_fronts = o.truncation.map(|t| t.dropped_fronts);
                 row.merged_fronts = o.truncation.map(|t| t.merged_fronts);
                 row.error_bound = o.error_bound;
+                row.bound_may_be_low = o
+                    .error_estimate
+                    .as_ref()
+                    .and_then(|e| e.merged_converging)
+                    .map(|converging| !converging);
                 row.elapsed_seconds = timing.then_some(seconds);
             }
             Err(e) => row.error = Some(e.to_string()),
@@ -240,6 +252,7 @@ struct CsvRow<'a> {
     dropped_fronts: Option<u64>,
     merged_fronts: Option<u64>,
     error_bound: Option<Plain<f64>>,
+    bound_may_be_low: Option<bool>,
     /// Absent from untimed sweeps; in timed ones, empty for a failed row.
     #[serde(skip_serializing_if = "Option::is_none")]
     elapsed_seconds: Option<Option<Plain<f64>>>,
@@ -267,6 +280,7 @@ impl<'a> CsvRow<'a> {
             dropped_fronts: r.dropped_fronts,
             merged_fronts: r.merged_fronts,
             error_bound: r.error_bound.map(Plain),
+            bound_may_be_low: r.bound_may_be_low,
             elapsed_seconds: timing.then(|| r.elapsed_seconds.map(Plain)),
             error: r.error.as_deref(),
         }
@@ -405,5 +419,36 @@ mod tests {
                 .1
                 .ends_with("\"scene JSON: a, \"\"b\"\"\"")
         );
+    }
+
+    /// A row says whether its bound may be low, as the run's estimate
+    /// does: a merged point whose levels do not converge (`x = 0.99`,
+    /// `alpha = 0.001`, a stiff base ringing under a long soft top) says
+    /// so, and an exact point leaves the cell empty.
+    #[test]
+    fn a_row_says_when_its_bound_may_be_low() {
+        let engine = Engine::Wave(WaveConfig::default());
+        let v = BilayerViscosity::default();
+        let merged = Bilayer {
+            x: 0.99,
+            alpha: 0.001,
+        };
+        let run = engine.run(merged, &v).unwrap();
+        let estimate = run.error_estimate.unwrap();
+        assert_eq!(estimate.merged_converging, Some(false), "the case");
+        let row = sweep_row(merged, &engine, &v, false);
+        assert_eq!(row.bound_may_be_low, Some(true));
+        assert_eq!(row.error_bound, Some(estimate.bound));
+        let exact = sweep_row(
+            Bilayer {
+                x: 0.4,
+                alpha: 0.05,
+            },
+            &engine,
+            &v,
+            false,
+        );
+        assert_eq!(exact.bound_may_be_low, None);
+        assert!(exact.error_bound.is_some());
     }
 }
