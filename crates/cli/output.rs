@@ -164,8 +164,11 @@ pub fn summary(title: &str, o: &Timed<Outcome>) -> String {
             // transit, its finer lattices lie 1,500 to 3,600 bounds away:
             // README. No factor is promised, and the next level is one
             // more check, not a proof.)
+            let tried = est.exact_again_unfinished.map_or(String::new(), |events| {
+                format!("; the exact run, tried again with {events} events, did not finish")
+            });
             let check = format!(
-                "the merged estimate may be low, by any factor ({})",
+                "the merged estimate may be low, by any factor ({}{tried})",
                 finer_level(est.ladder_stop)
             );
             parts.push(match est.merged_observed_order {

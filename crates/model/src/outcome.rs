@@ -153,6 +153,11 @@ pub struct ErrorEstimate {
     /// said, for comparison (`None` otherwise).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ladder_set_aside: Option<SetAsideLadder>,
+    /// Where the exact run was tried again after such a ladder and did
+    /// not finish: the events it was allowed (the outcome is the
+    /// ladder's; `None` otherwise).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub exact_again_unfinished: Option<u64>,
     /// How the parts were obtained, in words.
     pub method: String,
 }

@@ -112,32 +112,60 @@ pub(crate) const PREDICTED_SHARE: f64 = 0.5;
 /// trying cost it 0.3 s and 60 MB.
 pub(crate) const COVERED: f64 = 0.125;
 
+/// What the exact run again came to.
+pub(crate) enum Again {
+    /// Not tried: the levels converge, or the first run's growth says it
+    /// would not fit.
+    NotTried,
+    /// Tried and did not finish within the budget (its events): the words
+    /// for the method (the ladder's outcome stands).
+    InVain(u64, String),
+    /// Finished: that run, the words for the method, and what the ladder
+    /// had said.
+    Finished(Box<WaveEngine>, String, SetAsideLadder),
+}
+
 /// After a ladder that reported `fine` with `check`: the exact run again,
 /// allowed the ladder's budget, if its levels did not converge and the
 /// first exact run's growth says that run may finish ([`COVERED`],
-/// [`PREDICTED_SHARE`]). If it finishes: that run, the words for the
-/// method, and what the ladder had said.
+/// [`PREDICTED_SHARE`]).
 pub(crate) fn after_ladder(
     rod: &Rod,
     config: &WaveConfig,
     (fine, check): (&WaveEngine, &MergeCheck),
     first: FirstRun,
     observe: &dyn Fn(LadderProgress),
-) -> Option<(WaveEngine, String, SetAsideLadder)> {
+) -> Again {
     let Resolution::Auto { budget_events, .. } = config.resolution else {
-        return None;
+        return Again::NotTried;
     };
     let end = fine.outcome().end_time;
     let covered = first.stopped.1 >= COVERED * end;
     let predicted = first.work_to(end);
     if check.converging || !covered || predicted > PREDICTED_SHARE * budget_events as f64 {
-        return None;
+        return Again::NotTried;
     }
     observe(LadderProgress::ExactAgain {
         events: budget_events,
     });
     // any error (the limit, a time limit) leaves the ladder's outcome
-    let exact = run::<f64>(rod, exact_within(config, budget_events)).ok()?;
+    let exact = match run::<f64>(rod, exact_within(config, budget_events)) {
+        Ok(exact) => exact,
+        Err(e) => {
+            let stopped = match e {
+                WaveError::EventLimit { time, .. } => {
+                    format!("it stopped at t = {time:.3e}, the merged run ending at {end:.3e}")
+                }
+                e => e.to_string(),
+            };
+            return Again::InVain(
+                budget_events,
+                format!(
+                    "the merged ladder's levels did not converge, and the exact run, tried again with the ladder's budget of {budget_events} events (its first run's growth predicted {predicted:.1e}), did not finish ({stopped})"
+                ),
+            );
+        }
+    };
     let order = check
         .order
         .map_or(String::new(), |o| format!(", order {o:.1}"));
@@ -153,7 +181,7 @@ pub(crate) fn after_ladder(
         observed_order: check.order,
         exact_events: budget_events,
     };
-    Some((exact, note, ladder))
+    Again::Finished(Box::new(exact), note, ladder)
 }
 
 #[cfg(test)]

@@ -125,7 +125,7 @@ pub fn solve_observed(
 ) -> Result<Solution, WaveError> {
     config.check()?;
     let mut parts = Vec::new();
-    let mut set_aside = None;
+    let (mut set_aside, mut in_vain) = (None, None);
     let (fine, merged) = match config.resolution {
         Resolution::Exact => (run::<f64>(rod, config.clone())?, None),
         Resolution::Merged {
@@ -152,16 +152,24 @@ pub fn solve_observed(
                     halfway,
                     stopped: (events, time),
                 });
-                let after = first.filter(|_| exact_again).and_then(|first| {
-                    again::after_ladder(rod, config, (&fine, &check), first, observe)
-                });
+                let after = match first.filter(|_| exact_again) {
+                    Some(first) => {
+                        again::after_ladder(rod, config, (&fine, &check), first, observe)
+                    }
+                    None => again::Again::NotTried,
+                };
                 match after {
-                    Some((exact, note, ladder)) => {
+                    again::Again::Finished(exact, note, ladder) => {
                         parts.push(note);
                         set_aside = Some(ladder);
-                        (exact, None)
+                        (*exact, None)
                     }
-                    None => (fine, Some(check)),
+                    again::Again::InVain(events, note) => {
+                        parts.push(note);
+                        in_vain = Some(events);
+                        (fine, Some(check))
+                    }
+                    again::Again::NotTried => (fine, Some(check)),
                 }
             }
             (Err(e), _) => return Err(e),
@@ -170,6 +178,7 @@ pub fn solve_observed(
     let mut estimate = ErrorEstimate {
         dropped: fine.dropped_error_bound(),
         ladder_set_aside: set_aside,
+        exact_again_unfinished: in_vain,
         ..ErrorEstimate::default()
     };
     if let Some(check) = &merged {

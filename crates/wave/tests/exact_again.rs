@@ -122,6 +122,7 @@ fn a_budget_the_exact_run_does_not_fit_leaves_the_ladders_outcome() {
     assert_eq!(o, alone);
     let estimate = o.error_estimate.unwrap();
     assert!(estimate.merged > 0.0 && estimate.ladder_set_aside.is_none());
+    assert_eq!(estimate.exact_again_unfinished, None);
 }
 
 /// A ladder whose levels converge is left alone, though its exact run
@@ -150,5 +151,43 @@ fn a_ladder_whose_levels_converge_is_not_run_again() {
     assert!(
         d <= o.error_bound.unwrap() + x.error_bound.unwrap(),
         "{d:e}"
+    );
+}
+
+/// A rod whose exact run is tried again in vain says so, and its outcome
+/// is otherwise the ladder's, to the bit: layer survey seed 53's rod 1
+/// (three layers, transit ratio `1.1e5`), whose first run's growth
+/// predicts `1.8e6` events and whose exact run takes `4.4e6`, past the
+/// budget.
+#[test]
+fn an_exact_run_tried_in_vain_says_so_and_leaves_the_ladders_outcome() {
+    let rod = Scene::elastic_stack(
+        1.0,
+        &[
+            (0.3381984826266848, 60176583.40736058, 1.0353335428417532),
+            (0.5182595782843709, 1271158332609.2417, 2.091903402278884),
+            (0.25508544543600103, 4.39305135251702, 0.3602903314681281),
+        ],
+    )
+    .validate()
+    .unwrap();
+    let (o, seen) = observed(&rod, &WaveConfig::default());
+    assert!(tried_again(&seen), "the case: tried again");
+    let alone = simulate(&rod, &auto(4_000_000, false)).unwrap();
+    assert_eq!(
+        (o.restitution, o.error_bound, o.events),
+        (alone.restitution, alone.error_bound, alone.events)
+    );
+    let estimate = o.error_estimate.unwrap();
+    assert!(estimate.ladder_set_aside.is_none() && estimate.merged > 0.0);
+    assert_eq!(estimate.exact_again_unfinished, Some(4_000_000));
+    assert!(
+        estimate.method.contains("did not finish"),
+        "{}",
+        estimate.method
+    );
+    assert!(
+        exact_run(&rod, 4_000_000, true).is_none(),
+        "the case: past the budget"
     );
 }

@@ -220,7 +220,8 @@ export function boundNote(est) {
     const levels = order === undefined || order === null
       ? "the merged levels are not yet seen converging"
       : `the merged levels show order ${Number(order).toFixed(1)}, below 0.5`; // convergence.rs SLOWEST_ORDER
-    return `may be low, by any factor: ${levels}`;
+    const tried = est.exact_again_unfinished ? `; the exact run, tried again with ${est.exact_again_unfinished} events, did not finish` : "";
+    return `may be low, by any factor: ${levels}${tried}`;
   }
   const ladder = est.ladder_set_aside;
   if (ladder) {
