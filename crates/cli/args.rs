@@ -75,7 +75,7 @@ pub struct WaveArgs {
     /// Merge fronts of a layer born within this fraction of its transit time (implies --resolution merged)
     #[arg(long, value_name = "FRACTION", allow_negative_numbers = true)]
     pub merge_window: Option<f64>,
-    /// Work a merged ladder may spend under --resolution auto, in event-loop steps (a leap counts the fronts and lattice cells it handles); the lattices are chosen from it. Where the ladder's levels do not converge and the first exact run's growth says an exact run may fit this budget, the exact run is tried again with it and, if it finishes, reported (the ladder's e and bound beside it)
+    /// Work a merged ladder may spend under --resolution auto, in event-loop steps (a leap counts the fronts and lattice cells it handles); the lattices are chosen from it. Where the ladder's levels do not converge and the first exact run's growth says an exact run may fit this budget, the exact run is tried again with it (at most 2e7 events) and, if it finishes, reported (the ladder's e and bound beside it)
     #[arg(long, value_name = "N", value_parser = parse_count, allow_negative_numbers = true, default_value_t = 4_000_000)]
     pub event_budget: u64,
     /// Target error on e. Exact engine (--resolution auto): refine merged runs until the error bound is at most DE (default 1e-5, or until the budget is spent). Chain on a viscous scene without --n: double N until the extrapolation's error estimate is at most DE (default: N = 250, 500, 1000 only)

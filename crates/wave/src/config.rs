@@ -70,9 +70,9 @@ pub enum Resolution {
         target: f64,
         /// Where the ladder's levels do not converge (its estimate may be
         /// low) and the first exact run's growth says an exact run may fit
-        /// `budget_events`, the exact run again, allowed that; reported if
-        /// it finishes (`exact_again.rs`). Tests of the ladder itself turn
-        /// it off.
+        /// `budget_events`, the exact run again, allowed that (at most
+        /// `2e7` events); reported if it finishes (`exact_again.rs`).
+        /// Tests of the ladder itself turn it off.
         exact_again: bool,
     },
 }

@@ -10,7 +10,8 @@
 //! leaves nothing to estimate. So where the levels do not converge, and
 //! the way the first exact run's work grew says that a run within the
 //! ladder's own budget may finish ([`COVERED`], [`PREDICTED_SHARE`]), the
-//! exact run is tried again, allowed that budget. If it finishes, its
+//! exact run is tried again, allowed that budget (at most
+//! [`MOST_EVENTS`]). If it finishes, its
 //! outcome is reported (exact, with its own bound) and the ladder's is
 //! kept beside it for comparison (`ladder_set_aside`); if not, the
 //! ladder's stands as before. Converging ladders are left alone: their
@@ -112,6 +113,14 @@ pub(crate) const PREDICTED_SHARE: f64 = 0.5;
 /// trying cost it 0.3 s and 60 MB.
 pub(crate) const COVERED: f64 = 0.125;
 
+/// The most events the exact run is allowed again, whatever the budget:
+/// an exact run holds every front it has not dropped, and those stopped
+/// at `4e6` events peaked at 45 to 107 MB resident, so a budget of `1e9`
+/// (which a user may give the ladder, whose memory it does not grow)
+/// could have let one fill the machine. `2e7` events keep it near half a
+/// gigabyte and a second or two.
+pub(crate) const MOST_EVENTS: u64 = 20_000_000;
+
 /// What the exact run again came to.
 pub(crate) enum Again {
     /// Not tried: the levels converge, or the first run's growth says it
@@ -126,7 +135,7 @@ pub(crate) enum Again {
 }
 
 /// After a ladder that reported `fine` with `check`: the exact run again,
-/// allowed the ladder's budget, if its levels did not converge and the
+/// allowed the ladder's budget (at most [`MOST_EVENTS`]), if its levels did not converge and the
 /// first exact run's growth says that run may finish ([`COVERED`],
 /// [`PREDICTED_SHARE`]).
 pub(crate) fn after_ladder(
@@ -139,17 +148,16 @@ pub(crate) fn after_ladder(
     let Resolution::Auto { budget_events, .. } = config.resolution else {
         return Again::NotTried;
     };
+    let allowed = budget_events.min(MOST_EVENTS).min(config.max_events);
     let end = fine.outcome().end_time;
     let covered = first.stopped.1 >= COVERED * end;
     let predicted = first.work_to(end);
-    if check.converging || !covered || predicted > PREDICTED_SHARE * budget_events as f64 {
+    if check.converging || !covered || predicted > PREDICTED_SHARE * allowed as f64 {
         return Again::NotTried;
     }
-    observe(LadderProgress::ExactAgain {
-        events: budget_events,
-    });
+    observe(LadderProgress::ExactAgain { events: allowed });
     // any error (the limit, a time limit) leaves the ladder's outcome
-    let exact = match run::<f64>(rod, exact_within(config, budget_events)) {
+    let exact = match run::<f64>(rod, exact_within(config, allowed)) {
         Ok(exact) => exact,
         Err(e) => {
             let stopped = match e {
@@ -159,9 +167,9 @@ pub(crate) fn after_ladder(
                 e => e.to_string(),
             };
             return Again::InVain(
-                budget_events,
+                allowed,
                 format!(
-                    "the merged ladder's levels did not converge, and the exact run, tried again with the ladder's budget of {budget_events} events (its first run's growth predicted {predicted:.1e}), did not finish ({stopped})"
+                    "the merged ladder's levels did not converge, and the exact run, tried again with {allowed} events (the ladder's budget, at most {MOST_EVENTS}; its first run's growth predicted {predicted:.1e}), did not finish ({stopped})"
                 ),
             );
         }
@@ -170,7 +178,7 @@ pub(crate) fn after_ladder(
         .order
         .map_or(String::new(), |o| format!(", order {o:.1}"));
     let note = format!(
-        "the merged ladder's levels did not converge (its finest level gave e = {:.10} with a merged bound of {:.1e}{order}), so the exact run was allowed the ladder's budget of {budget_events} events and finished in {}",
+        "the merged ladder's levels did not converge (its finest level gave e = {:.10} with a merged bound of {:.1e}{order}), so the exact run was allowed {allowed} events (the ladder's budget, at most {MOST_EVENTS}) and finished in {}",
         fine.restitution(),
         check.bound,
         exact.events()
@@ -179,7 +187,7 @@ pub(crate) fn after_ladder(
         restitution: fine.restitution(),
         merged_bound: check.bound,
         observed_order: check.order,
-        exact_events: budget_events,
+        exact_events: allowed,
     };
     Again::Finished(Box::new(exact), note, ladder)
 }

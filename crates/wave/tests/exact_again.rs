@@ -191,3 +191,33 @@ fn an_exact_run_tried_in_vain_says_so_and_leaves_the_ladders_outcome() {
         "the case: past the budget"
     );
 }
+
+/// However large the ladder's budget, the exact run again is allowed at
+/// most `2e7` events (an exact run holds every front it keeps, so a
+/// budget of `1e9` could otherwise let it fill the machine): layer survey
+/// seed 3's rod 37 (four layers, transit ratio 290), whose levels do not
+/// converge and whose exact run takes 510 k events, with a budget of
+/// `1e8`.
+#[test]
+fn the_exact_run_again_is_allowed_at_most_2e7_events() {
+    let rod = Scene::elastic_stack(
+        1.0,
+        &[
+            (0.6477453867296215, 35056.512156111814, 0.5285157325814629),
+            (1.1697267711363772, 5157.833769300799, 4.058702231125916),
+            (0.5696300696095613, 13081781.100634966, 5.13817556683631),
+            (0.35909290469651983, 1144980.7178680243, 0.1107781479997433),
+        ],
+    )
+    .validate()
+    .unwrap();
+    let (o, seen) = observed(&rod, &auto(100_000_000, true));
+    assert!(
+        seen.contains(&LadderProgress::ExactAgain { events: 20_000_000 }),
+        "{seen:?}"
+    );
+    let kept = o.error_estimate.unwrap().ladder_set_aside.expect("exact");
+    assert_eq!(kept.exact_events, 20_000_000);
+    let x = exact_run(&rod, 20_000_000, true).unwrap();
+    assert_eq!(o.restitution, x.restitution);
+}
