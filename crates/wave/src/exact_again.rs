@@ -135,9 +135,9 @@ pub(crate) enum Again {
 }
 
 /// After a ladder that reported `fine` with `check`: the exact run again,
-/// allowed the ladder's budget (at most [`MOST_EVENTS`]), if its levels did not converge and the
-/// first exact run's growth says that run may finish ([`COVERED`],
-/// [`PREDICTED_SHARE`]).
+/// allowed the ladder's budget (at most [`MOST_EVENTS`]), if its levels
+/// did not converge and the first exact run's growth says that run may
+/// finish ([`COVERED`], [`PREDICTED_SHARE`]).
 pub(crate) fn after_ladder(
     rod: &Rod,
     config: &WaveConfig,
@@ -149,7 +149,8 @@ pub(crate) fn after_ladder(
         return Again::NotTried;
     };
     let allowed = budget_events.min(MOST_EVENTS).min(config.max_events);
-    let end = fine.outcome().end_time;
+    // the reported level's end, in the scene's units (its outcome's `end_time`)
+    let end = fine.time();
     let covered = first.stopped.1 >= COVERED * end;
     let predicted = first.work_to(end);
     if check.converging || !covered || predicted > PREDICTED_SHARE * allowed as f64 {

@@ -28,6 +28,11 @@ fn brass_and_aluminium_under_rubber() -> Rod {
     .unwrap()
 }
 
+/// A unit-speed impact of `layers` (length, modulus, density), bottom first.
+fn unit_impact(layers: &[(f64, f64, f64)]) -> Rod {
+    Scene::elastic_stack(1.0, layers).validate().unwrap()
+}
+
 /// The default resolution with the ladder's budget `budget_events` and the
 /// exact run again on or off.
 fn auto(budget_events: u64, exact_again: bool) -> WaveConfig {
@@ -131,16 +136,11 @@ fn a_budget_the_exact_run_does_not_fit_leaves_the_ladders_outcome() {
 /// 200 k.
 #[test]
 fn a_ladder_whose_levels_converge_is_not_run_again() {
-    let rod = Scene::elastic_stack(
-        1.0,
-        &[
-            (0.5368391303020945, 36.81750461491677, 1.2433156895204054),
-            (1.107001899169865, 772991.0539634638, 6.921418951221943),
-            (0.3051333006579689, 26366604.473739702, 0.5228796026115057),
-        ],
-    )
-    .validate()
-    .unwrap();
+    let rod = unit_impact(&[
+        (0.5368391303020945, 36.81750461491677, 1.2433156895204054),
+        (1.107001899169865, 772991.0539634638, 6.921418951221943),
+        (0.3051333006579689, 26366604.473739702, 0.5228796026115057),
+    ]);
     let (o, seen) = observed(&rod, &WaveConfig::default());
     let estimate = o.error_estimate.clone().unwrap();
     assert_eq!(estimate.merged_converging, Some(true), "the case");
@@ -161,16 +161,11 @@ fn a_ladder_whose_levels_converge_is_not_run_again() {
 /// budget.
 #[test]
 fn an_exact_run_tried_in_vain_says_so_and_leaves_the_ladders_outcome() {
-    let rod = Scene::elastic_stack(
-        1.0,
-        &[
-            (0.3381984826266848, 60176583.40736058, 1.0353335428417532),
-            (0.5182595782843709, 1271158332609.2417, 2.091903402278884),
-            (0.25508544543600103, 4.39305135251702, 0.3602903314681281),
-        ],
-    )
-    .validate()
-    .unwrap();
+    let rod = unit_impact(&[
+        (0.3381984826266848, 60176583.40736058, 1.0353335428417532),
+        (0.5182595782843709, 1271158332609.2417, 2.091903402278884),
+        (0.25508544543600103, 4.39305135251702, 0.3602903314681281),
+    ]);
     let (o, seen) = observed(&rod, &WaveConfig::default());
     assert!(tried_again(&seen), "the case: tried again");
     let alone = simulate(&rod, &auto(4_000_000, false)).unwrap();
@@ -200,17 +195,12 @@ fn an_exact_run_tried_in_vain_says_so_and_leaves_the_ladders_outcome() {
 /// `1e8`.
 #[test]
 fn the_exact_run_again_is_allowed_at_most_2e7_events() {
-    let rod = Scene::elastic_stack(
-        1.0,
-        &[
-            (0.6477453867296215, 35056.512156111814, 0.5285157325814629),
-            (1.1697267711363772, 5157.833769300799, 4.058702231125916),
-            (0.5696300696095613, 13081781.100634966, 5.13817556683631),
-            (0.35909290469651983, 1144980.7178680243, 0.1107781479997433),
-        ],
-    )
-    .validate()
-    .unwrap();
+    let rod = unit_impact(&[
+        (0.6477453867296215, 35056.512156111814, 0.5285157325814629),
+        (1.1697267711363772, 5157.833769300799, 4.058702231125916),
+        (0.5696300696095613, 13081781.100634966, 5.13817556683631),
+        (0.35909290469651983, 1144980.7178680243, 0.1107781479997433),
+    ]);
     let (o, seen) = observed(&rod, &auto(100_000_000, true));
     assert!(
         seen.contains(&LadderProgress::ExactAgain { events: 20_000_000 }),
