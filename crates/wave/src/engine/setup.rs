@@ -223,6 +223,7 @@ impl<R: Real> Tracer<R> {
                 config.one_lattice_blocks,
                 config.fold_small_exact,
             );
+            engine.rule_out_leaps_blocks_forbid();
         }
         if merged && config.step_bottom_group && config.record == Record::default() {
             engine.find_group();
