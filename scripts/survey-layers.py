@@ -241,7 +241,7 @@ def main():
     checked, held, exact_furthest, outside_warned = 0, 0, 0.0, 0
     again = 0
     fine_checked, fine_held, fine_closest, fine_open = 0, 0, 0.0, 0
-    other_times, moved, furthest = [], 0, (0.0, None)
+    other_times, moved, furthest = [], 0, (-1.0, None)
     print(f"rod  layers  ratio      seconds       events     MiB  e             bound")
     with tempfile.TemporaryDirectory(prefix="impact-survey-") as work:
         for k in range(args.rods):

@@ -123,6 +123,65 @@ fn a_chattering_rods_bound_covers_its_nudged_runs() {
     );
 }
 
+/// Layer survey seed 67's rod 22 (`scripts/survey-layers.py --seed 67`):
+/// five layers, a fast bottom under a soft one, a stiff thin layer, a
+/// soft one, a fast top (transits `1.3e-4`, `9.7e-2`, `1.1e-5`, `0.12`,
+/// `1.6e-4`). Its nudged runs on its reported lattice fall in two
+/// clusters, near `0.809` and near `0.834`, and its first twin lands in
+/// its own.
+fn survey_seed_67_rod_22() -> Rod {
+    Scene::elastic_stack(
+        1.0,
+        &[
+            (0.945334100985229, 18786333.561199512, 0.3384816376166732),
+            (0.33071313817515374, 23.152833315983184, 1.9825176799209283),
+            (0.9197447351980501, 19305605378.838127, 2.840205784623363),
+            (0.5874281618507624, 7.611995382387595, 0.29803121857887427),
+            (1.1290939998099483, 236104097.53683907, 4.89982061604079),
+        ],
+    )
+    .validate()
+    .expect("a valid rod")
+}
+
+/// A first twin far under the refinement estimate may still say too
+/// little: seed 67's rod 22's twin differs by `6.7e-5`, a 164th of its
+/// refinement estimate, and with that one twin the bound, `2.2e-2`,
+/// covered 2 of the six nudged runs `k = 3..8` here (10 of 24 over `k =
+/// -12..12`). Its further twins land in the other cluster, and the bound
+/// covers all six.
+#[test]
+fn a_twin_far_under_the_refinement_estimate_still_calls_the_further_twins() {
+    use rayon::prelude::*;
+    let rod = survey_seed_67_rod_22();
+    let lattice = Cell::new((0.0, 0.0));
+    let outcome = solve_observed(&rod, &WaveConfig::default(), &|p| {
+        if let LadderProgress::LevelDone { per_transit, .. } = p {
+            lattice.set((per_transit, per_transit * 4e-3 / 0.2));
+        }
+    })
+    .unwrap()
+    .outcome;
+    let (e, bound) = (outcome.restitution, outcome.error_bound.unwrap());
+    let estimate = outcome.error_estimate.unwrap();
+    assert!(
+        estimate.method.contains("over 3 twins"),
+        "{}",
+        estimate.method
+    );
+    let lattice = lattice.get();
+    let others: Vec<f64> = (3..=8)
+        .collect::<Vec<i32>>()
+        .par_iter()
+        .map(|&k| nudged_run(&rod, k, lattice))
+        .collect();
+    let covered = others.iter().filter(|o| (*o - e).abs() <= bound).count();
+    assert_eq!(
+        covered, 6,
+        "e = {e} +- {bound:e} covers {covered} of {others:?}"
+    );
+}
+
 /// A ladder stopped by its budget of work names the budget that runs its
 /// next level (`LadderStop::Budget`), which is what a bound whose levels
 /// are not yet seen converging asks to be checked with: one event less
