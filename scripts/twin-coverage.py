@@ -10,9 +10,10 @@ twins"): this measures, rod by rod, how much of that spread the bound holds.
 It also sets the spread of the nudged runs (the largest distance from the
 reported `e`) against the first twin's difference, the one sample that
 decides whether the further twins run (`ONE_SAMPLE_LOW` in
-crates/wave/src/twins.rs). The nudged runs sit on the reported lattice, so they measure the chaos alone,
-not the lattice's error; the k = 0 run must give the reported `e` to the bit
-(the script checks it: the same run, the same config).
+crates/wave/src/twins.rs). The nudged runs sit on the reported lattice, so
+they measure the chaos alone, not the lattice's error; the k = 0 run is the
+reported level's own run, and the script says so where its `e` differs from
+the reported one by over 1e-12 (a wrong lattice, or a changed engine).
 
     python3 scripts/survey-layers.py --seed 7 --keep /tmp/s7   # scenes
     IMPACT=target/release/impact NUDGE=target/release/examples/nudge_spread \\
