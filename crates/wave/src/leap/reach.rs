@@ -31,14 +31,7 @@ impl<R: Real> Tracer<R> {
     pub(super) fn first_from_outside(&self, i: usize, taking: bool) -> (Option<R>, Option<R>) {
         let transit = |m: usize| self.lanes[Lane::<R>::index(m, Direction::Up)].transit;
         let earlier = |e: Option<R>, at: R| Some(e.map_or(at, |e| if at < e { at } else { e }));
-        // when a front of layer `j` arriving at its lane's end at `head`
-        // could reach layer `i` (across the layers between, after a
-        // reflection at `j`'s far end if it goes away from `i`)
-        let reach = |j: usize, towards: bool, head: R| {
-            let between = if j < i { j + 1..i } else { i + 1..j };
-            let at = between.fold(head, |at, m| at + transit(m));
-            if towards { at } else { at + transit(j) }
-        };
+        let reach = |j: usize, towards: bool, head: R| self.reach(i, j, towards, head);
         let (mut earliest, mut others) = (None, None);
         for lane in &self.lanes {
             let j = lane.layer;
@@ -105,6 +98,17 @@ impl<R: Real> Tracer<R> {
         (earliest, others)
     }
 
+    /// When a front of layer `j` arriving at its lane's end at `head`
+    /// could reach layer `i`: across the layers between, after a
+    /// reflection at `j`'s far end if it goes away from `i`.
+    #[inline]
+    fn reach(&self, i: usize, j: usize, towards: bool, head: R) -> R {
+        let transit = |m: usize| self.lanes[Lane::<R>::index(m, Direction::Up)].transit;
+        let between = if j < i { j + 1..i } else { i + 1..j };
+        let at = between.fold(head, |at, m| at + transit(m));
+        if towards { at } else { at + transit(j) }
+    }
+
     /// Rules out the leaps of every layer that a block's port reaches, at
     /// any moment, sooner than the layer's shortest leap: the port's bound
     /// in [`Tracer::first_from_outside`] is the present plus a constant
@@ -131,12 +135,11 @@ impl<R: Real> Tracer<R> {
             } else {
                 R::of(SHORTEST_LEAP)
             } * transit(i);
+            // the port's bound less the present (`first_from_outside`)
             let mut soonest = self.blocks.list.iter().flat_map(|b| &b.ports).map(|port| {
                 let (j, dir) = port.out;
                 let towards = (dir == Direction::Up) == (j < i);
-                let between = if j < i { j + 1..i } else { i + 1..j };
-                let at = between.fold(transit(j), |at, m| at + transit(m));
-                (if towards { at } else { at + transit(j) }) - margin
+                self.reach(i, j, towards, transit(j)) - margin
             });
             let rounding = R::of(ROUNDING) * (self.max_time + margin);
             if soonest.any(|at| at + rounding < shortest) {
