@@ -45,6 +45,52 @@ fn nudged_run(rod: &Rod, k: i32, (p, l): (f64, f64)) -> f64 {
     engine.run().unwrap().restitution
 }
 
+/// What the default run reports, on which lattice (the ladder halves
+/// `(0.2, 4e-3)` together), at which level, and the level whose further
+/// twins it announced.
+struct DefaultRun {
+    outcome: impact_model::Outcome,
+    lattice: (f64, f64),
+    level: usize,
+    further_twins: Option<usize>,
+}
+
+fn default_run(rod: &Rod) -> DefaultRun {
+    let lattice = Cell::new((0.0, 0.0));
+    let levels = Cell::new(0);
+    let further = Cell::new(None);
+    let outcome = solve_observed(rod, &WaveConfig::default(), &|p| match p {
+        LadderProgress::LevelDone {
+            level, per_transit, ..
+        } => {
+            lattice.set((per_transit, per_transit * 4e-3 / 0.2));
+            levels.set(level);
+        }
+        LadderProgress::FurtherTwins { level, .. } => further.set(Some(level)),
+        LadderProgress::LadderStarted { .. } | LadderProgress::ExactAgain { .. } => {}
+    })
+    .unwrap()
+    .outcome;
+    DefaultRun {
+        outcome,
+        lattice: lattice.get(),
+        level: levels.get(),
+        further_twins: further.get(),
+    }
+}
+
+/// The nudged runs `ks` on `lattice`, side by side, and how many lie
+/// within `bound` of `e`.
+fn covered(rod: &Rod, ks: &[i32], lattice: (f64, f64), e: f64, bound: f64) -> (usize, Vec<f64>) {
+    use rayon::prelude::*;
+    let others: Vec<f64> = ks
+        .par_iter()
+        .map(|&k| nudged_run(rod, k, lattice))
+        .collect();
+    let within = others.iter().filter(|o| (*o - e).abs() <= bound).count();
+    (within, others)
+}
+
 /// The default run of a chattering rod runs three twins (its first twin's
 /// difference is far above what a smooth `e` gives), its merge bound is
 /// at least twice the largest of their differences, recomputed here from
@@ -60,24 +106,10 @@ fn nudged_run(rod: &Rod, k: i32, (p, l): (f64, f64)) -> f64 {
 fn a_chattering_rods_bound_covers_its_nudged_runs() {
     use rayon::prelude::*;
     let rod = survey_rod_33();
-    let lattice = Cell::new((0.0, 0.0));
-    let levels = Cell::new(0);
-    let further = Cell::new(None);
-    let outcome = solve_observed(&rod, &WaveConfig::default(), &|p| match p {
-        LadderProgress::LevelDone {
-            level, per_transit, ..
-        } => {
-            // the ladder halves (0.2, 4e-3) together
-            lattice.set((per_transit, per_transit * 4e-3 / 0.2));
-            levels.set(level);
-        }
-        LadderProgress::FurtherTwins { level, .. } => further.set(Some(level)),
-        LadderProgress::LadderStarted { .. } | LadderProgress::ExactAgain { .. } => {}
-    })
-    .unwrap()
-    .outcome;
+    let run = default_run(&rod);
     // the further twins were announced, for the level reported
-    assert_eq!(further.get(), Some(levels.get()));
+    assert_eq!(run.further_twins, Some(run.level));
+    let outcome = run.outcome;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
@@ -91,10 +123,9 @@ fn a_chattering_rods_bound_covers_its_nudged_runs() {
         "{}",
         estimate.method
     );
-    let lattice = lattice.get();
     let twins: Vec<f64> = [1, -1, 2]
         .par_iter()
-        .map(|&k| nudged_run(&rod, k, lattice))
+        .map(|&k| nudged_run(&rod, k, run.lattice))
         .collect();
     let chaos = twins.iter().map(|t| (t - e).abs()).fold(0.0, f64::max);
     // the twins' largest difference is the one the method names, and the
@@ -110,16 +141,11 @@ fn a_chattering_rods_bound_covers_its_nudged_runs() {
         estimate.merged
     );
     assert!(bound >= estimate.merged, "bound {bound:e}");
-    let others: Vec<f64> = (-6..=-2)
-        .chain(3..=9)
-        .collect::<Vec<i32>>()
-        .par_iter()
-        .map(|&k| nudged_run(&rod, k, lattice))
-        .collect();
-    let covered = others.iter().filter(|o| (*o - e).abs() <= bound).count();
+    let ks: Vec<i32> = (-6..=-2).chain(3..=9).collect();
+    let (within, others) = covered(&rod, &ks, run.lattice, e, bound);
     assert!(
-        covered >= 10,
-        "e = {e} +- {bound:e} covers {covered} of {others:?}"
+        within >= 10,
+        "e = {e} +- {bound:e} covers {within} of {others:?}"
     );
 }
 
@@ -152,33 +178,16 @@ fn survey_seed_67_rod_22() -> Rod {
 /// covers all six.
 #[test]
 fn a_twin_far_under_the_refinement_estimate_still_calls_the_further_twins() {
-    use rayon::prelude::*;
     let rod = survey_seed_67_rod_22();
-    let lattice = Cell::new((0.0, 0.0));
-    let outcome = solve_observed(&rod, &WaveConfig::default(), &|p| {
-        if let LadderProgress::LevelDone { per_transit, .. } = p {
-            lattice.set((per_transit, per_transit * 4e-3 / 0.2));
-        }
-    })
-    .unwrap()
-    .outcome;
-    let (e, bound) = (outcome.restitution, outcome.error_bound.unwrap());
-    let estimate = outcome.error_estimate.unwrap();
-    assert!(
-        estimate.method.contains("over 3 twins"),
-        "{}",
-        estimate.method
-    );
-    let lattice = lattice.get();
-    let others: Vec<f64> = (3..=8)
-        .collect::<Vec<i32>>()
-        .par_iter()
-        .map(|&k| nudged_run(&rod, k, lattice))
-        .collect();
-    let covered = others.iter().filter(|o| (*o - e).abs() <= bound).count();
+    let run = default_run(&rod);
+    assert_eq!(run.further_twins, Some(run.level));
+    let (e, bound) = (run.outcome.restitution, run.outcome.error_bound.unwrap());
+    let method = run.outcome.error_estimate.unwrap().method;
+    assert!(method.contains("over 3 twins"), "{method}");
+    let (within, others) = covered(&rod, &[3, 4, 5, 6, 7, 8], run.lattice, e, bound);
     assert_eq!(
-        covered, 6,
-        "e = {e} +- {bound:e} covers {covered} of {others:?}"
+        within, 6,
+        "e = {e} +- {bound:e} covers {within} of {others:?}"
     );
 }
 
